@@ -1,0 +1,1 @@
+"""Python side of the chain-drive project: runs, tables, plots, benchmarks."""

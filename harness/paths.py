@@ -1,0 +1,14 @@
+"""Where things are: the repository, the build directory and the executables."""
+import os
+import pathlib
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+BUILD = pathlib.Path(os.environ.get("CHAINDRIVE_BUILD", ROOT / "build"))
+RESULTS = pathlib.Path(os.environ.get("CHAINDRIVE_RESULTS", ROOT / "results"))
+
+
+def executable(name):
+    path = BUILD / name
+    if not path.exists():
+        raise FileNotFoundError(f"{path} not found; build first (./run.sh builds into {BUILD})")
+    return str(path)

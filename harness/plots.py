@@ -1,0 +1,170 @@
+"""Plots engineers read: the drive layout, time histories, order spectra, one cycle of a link."""
+import json
+import math
+import subprocess
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from . import paths  # noqa: E402
+
+
+def geometry(drive=None):
+    """Assembled geometry of a drive, from chaindrive-info."""
+    import tempfile, os
+    fd, tmp = tempfile.mkstemp(suffix=".json")
+    os.close(fd)
+    try:
+        cmd = [paths.executable("chaindrive-info"), "--geometry", tmp, "--quiet"]
+        if drive:
+            cmd += ["--drive", str(drive)]
+        subprocess.run(cmd, check=True, capture_output=True, text=True)
+        with open(tmp) as f:
+            return json.load(f)
+    finally:
+        os.unlink(tmp)
+
+
+def drive_picture(path, drive=None, title=None):
+    """The drive and the chain at its initial (assembled) pose."""
+    g = geometry(drive)
+    fig, ax = plt.subplots(figsize=(6.5, 9.0))
+    for s in g["sprockets"]:
+        o = np.array(s["outline"] + [s["outline"][0]])
+        ax.fill(o[:, 0] * 1e3, o[:, 1] * 1e3, color="0.85", lw=0.0)
+        ax.plot(o[:, 0] * 1e3, o[:, 1] * 1e3, "k-", lw=0.5)
+        c = s["center"]
+        ax.plot(c[0] * 1e3, c[1] * 1e3, "k+", ms=6)
+        ax.annotate(s["name"], (c[0] * 1e3, c[1] * 1e3), textcoords="offset points", xytext=(4, -12), fontsize=7)
+    for gd in g["guides"]:
+        for face in gd["faces"]:
+            f = np.array(face)
+            ax.plot(f[:, 0] * 1e3, f[:, 1] * 1e3, "-", color="tab:blue", lw=3.0, solid_capstyle="round")
+        mid = np.array(gd["faces"][0])[len(gd["faces"][0]) // 2]
+        ax.annotate(gd["name"], (mid[0] * 1e3, mid[1] * 1e3), textcoords="offset points",
+                    xytext=(-75 if mid[0] < 0 else 10, -30 if mid[0] < 0 else 0), fontsize=7, color="tab:blue")
+        if gd["pivoting"]:
+            pv = np.array(gd["pivot"]) * 1e3
+            ax.plot(pv[0], pv[1], "o", color="tab:blue", ms=5)
+            face = np.array(gd["faces"][0]) * 1e3
+            end = face[np.argmin(np.hypot(face[:, 0] - pv[0], face[:, 1] - pv[1]))]
+            ax.plot([pv[0], end[0]], [pv[1], end[1]], "-", color="tab:blue", lw=1.5)  # the arm
+            t = g.get("tensioner")
+            if t:
+                pad = np.array(t["pad"]) * 1e3
+                near = face[np.argmin(np.hypot(face[:, 0] - pad[0], face[:, 1] - pad[1]))]
+                ax.plot([pad[0], near[0]], [pad[1], near[1]], "-", color="tab:blue", lw=1.5)
+    t = g.get("tensioner")
+    if t:
+        h, p = np.array(t["housing"]) * 1e3, np.array(t["pad"]) * 1e3
+        ax.plot([h[0], p[0]], [h[1], p[1]], "-", color="tab:purple", lw=5, solid_capstyle="butt")
+        ax.annotate("tensioner", h, textcoords="offset points", xytext=(-30, 10), fontsize=7, color="tab:purple")
+    pins = np.array(g["pins"] + [g["pins"][0]]) * 1e3
+    ax.plot(pins[:, 0], pins[:, 1], "-", color="tab:red", lw=0.8)
+    r = g["rollerRadius"] * 1e3
+    for k, (x, y) in enumerate(pins[:-1]):
+        ax.add_patch(plt.Circle((x, y), r, fill=False, color="tab:red", lw=0.4))
+    ax.plot(pins[0, 0], pins[0, 1], "o", color="k", ms=3)
+    for pr, name in zip(g.get("probes", []), ("tight-span probe", "slack-span probe")):
+        if pr:
+            ax.plot(pr[0] * 1e3, pr[1] * 1e3, "x", color="tab:green", ms=7)
+            ax.annotate(name, (pr[0] * 1e3, pr[1] * 1e3), textcoords="offset points", xytext=(6, 4), fontsize=6,
+                        color="tab:green")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title(title or g["name"], fontsize=9)
+    ax.grid(True, lw=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    return path
+
+
+def order_spectrum(t, x, rpm):
+    """Single-sided amplitude spectrum over engine order (per crankshaft revolution), Hann window
+    with amplitude correction, over the given samples."""
+    x = np.asarray(x) - np.mean(x)
+    n = len(x)
+    dt = t[1] - t[0]
+    w = np.hanning(n)
+    X = np.fft.rfft(x * w) * 2.0 / np.sum(w)
+    f = np.fft.rfftfreq(n, dt)
+    return f / (rpm / 60.0), np.abs(X)
+
+
+def time_histories(path, d, rpm, title):
+    t = d["time"] * 1e3
+    fig, ax = plt.subplots(5, 1, figsize=(10, 11), sharex=True)
+    ax[0].plot(t, d["tensioner.F"], lw=0.7)
+    ax[0].set_ylabel("tensioner force [N]")
+    ax[1].plot(t, d["chain.Ftight"], lw=0.5, label="tight span")
+    ax[1].plot(t, d["chain.Fslack"], lw=0.5, label="slack span")
+    ax[1].set_ylabel("span force [N]")
+    ax[1].legend(fontsize=7, loc="upper right")
+    ax[2].plot(t, np.degrees(d["tensionGuide.phi"]), lw=0.7)
+    ax[2].set_ylabel("tension guide [deg]")
+    for name in ("camshaftIntake", "camshaftExhaust"):
+        if name + ".phi" in d:
+            dev = np.degrees(d[name + ".phi"] - 0.5 * d["crankshaft.phi"]) * 2.0
+            ax[3].plot(t, dev, lw=0.6, label=name)
+    ax[3].set_ylabel("cam timing dev. [deg CA]")
+    ax[3].legend(fontsize=7, loc="upper right")
+    ax[4].plot(t, d["crankshaft.tau"], lw=0.6)
+    ax[4].set_ylabel("chain torque on crank [N m]")
+    ax[4].set_xlabel("time [ms]")
+    for a in ax:
+        a.grid(True, lw=0.3)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def spectra(path, d, rpm, t0, title):
+    """Tension-guide motion and tensioner force over engine order (the paper's Figure 13)."""
+    sel = d["time"] >= t0
+    fig, ax = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    for a, key, scale, label in ((ax[0], "tensionGuide.phi", 180.0 / math.pi, "tension guide angle [deg]"),
+                                 (ax[1], "tensioner.F", 1.0, "tensioner force [N]")):
+        o, amp = order_spectrum(d["time"][sel], d[key][sel] * scale, rpm)
+        keep = o <= 40
+        a.bar(o[keep], amp[keep], width=0.25, color="tab:blue")
+        a.set_ylabel(label)
+        a.grid(True, lw=0.3)
+        for k in (2, 4, 6, 8):
+            a.axvline(k, color="0.7", lw=0.5, ls="--")
+    ax[1].set_xlabel("engine order (per crankshaft revolution)")
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def link_cycle(path, d, rpm, title):
+    """One cycle of the monitored link: tensile force and contact forces (the paper's Figure 12)."""
+    t = d["time"] * 1e3
+    fig, ax = plt.subplots(2, 1, figsize=(10, 6.5), sharex=True)
+    ax[0].plot(t, d["link.FnSprocket"], lw=0.6, label="with sprockets")
+    ax[0].plot(t, d["link.FnGuide"], lw=0.6, label="with guides")
+    ax[0].set_ylabel("contact normal force [N]")
+    ax[0].legend(fontsize=7, loc="upper right")
+    ax[1].plot(t, d["link.F"], lw=0.6)
+    ax[1].set_ylabel("link tensile force [N]")
+    ax[1].set_xlabel("time [ms]")
+    for a in ax:
+        a.grid(True, lw=0.3)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def dominant_orders(t, x, rpm, count=3):
+    o, amp = order_spectrum(t, x, rpm)
+    keep = (o > 0.75) & (o <= 40)
+    idx = np.argsort(amp[keep])[::-1][:count]
+    return [(float(o[keep][i]), float(amp[keep][i])) for i in idx]

@@ -1,0 +1,140 @@
+// CVODE BDF with a Newton solver on either a sparse direct solver (KLU, exact pattern and
+// element Jacobian) or a banded solver (CVODE's difference-quotient band Jacobian, which drops
+// the couplings outside the band: an approximate Newton matrix).
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include <cvode/cvode.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "integrators.h"
+#include "sundials_common.h"
+
+namespace chaindrive {
+
+namespace {
+
+extern "C" int cvodeJacobian(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* user, N_Vector, N_Vector,
+                             N_Vector) noexcept {
+  auto* cb = static_cast<CallbackState*>(user);
+  OdeSystem& sys = *cb->sys;
+  const int64_t nnz = sys.jacobianNonzeros();
+  std::memcpy(SUNSparseMatrix_IndexPointers(J), sys.jacobianColumnPointers(), sizeof(sunindextype) * (sys.size() + 1));
+  std::memcpy(SUNSparseMatrix_IndexValues(J), sys.jacobianRowIndices(), sizeof(sunindextype) * nnz);
+  return sys.jacobian(t, N_VGetArrayPointer(y), SUNSparseMatrix_Data(J));
+}
+
+class CvodeBdf : public Integrator {
+ public:
+  CvodeBdf(OdeSystem& sys, const IntegratorSettings& s, bool klu)
+      : sys_(sys), settings_(s), klu_(klu), y_(sys.size(), ctx_.ctx), atol_(sys.size(), ctx_.ctx) {
+    cb_.sys = &sys;
+    static_assert(sizeof(sunindextype) == sizeof(int64_t), "SUNDIALS index type must be 64 bit");
+    mem_ = CVodeCreate(CV_BDF, ctx_.ctx);
+    if (!mem_) throw std::runtime_error("CVodeCreate failed");
+  }
+  ~CvodeBdf() override {
+    if (mem_) CVodeFree(&mem_);
+    if (ls_) SUNLinSolFree(ls_);
+    if (A_) SUNMatDestroy(A_);
+  }
+
+  std::string name() const override { return klu_ ? "cvode-bdf-klu" : "cvode-bdf-band"; }
+
+  void reset(double t0, const double* y0) override {
+    std::memcpy(y_.data(), y0, sizeof(double) * sys_.size());
+    t_ = t0;
+    if (!initialized_) {
+      check(CVodeInit(mem_, chaindriveRhs, t0, y_.v), "CVodeInit");
+      check(CVodeSetUserData(mem_, &cb_), "CVodeSetUserData");
+      check(CVodeSetErrHandlerFn(mem_, chaindriveErrHandler, &cb_), "CVodeSetErrHandlerFn");
+      fillAbsoluteTolerances(sys_, settings_.rtol, atol_.v);
+      check(CVodeSVtolerances(mem_, settings_.rtol, atol_.v), "CVodeSVtolerances");
+      if (klu_) {
+        if (!sys_.hasJacobian()) throw std::invalid_argument("cvode-bdf-klu needs a system with a sparse Jacobian");
+        A_ = SUNSparseMatrix(sys_.size(), sys_.size(), sys_.jacobianNonzeros(), CSC_MAT, ctx_.ctx);
+        ls_ = SUNLinSol_KLU(y_.v, A_, ctx_.ctx);
+        if (!A_ || !ls_) throw std::runtime_error("cannot create the KLU solver");
+        check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
+        check(CVodeSetJacFn(mem_, cvodeJacobian), "CVodeSetJacFn");
+      } else {
+        const int bw = sys_.halfBandwidth();
+        A_ = SUNBandMatrix(sys_.size(), bw, bw, ctx_.ctx);
+        ls_ = SUNLinSol_Band(y_.v, A_, ctx_.ctx);
+        if (!A_ || !ls_) throw std::runtime_error("cannot create the band solver");
+        check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
+      }
+      check(CVodeSetMaxNumSteps(mem_, settings_.maxStepsPerOutput), "CVodeSetMaxNumSteps");
+      if (settings_.maxStep > 0.0) check(CVodeSetMaxStep(mem_, settings_.maxStep), "CVodeSetMaxStep");
+      check(CVodeSetStabLimDet(mem_, SUNTRUE), "CVodeSetStabLimDet");
+      initialized_ = true;
+    } else {
+      check(CVodeReInit(mem_, t0, y_.v), "CVodeReInit");
+    }
+  }
+
+  void advance(double tout, double* y) override {
+    if (settings_.stopAtOutputs) check(CVodeSetStopTime(mem_, tout), "CVodeSetStopTime");
+    double t = t_;
+    const int flag = CVode(mem_, tout, y_.v, &t, CV_NORMAL);
+    if (flag < 0) {
+      double tcur = t;
+      CVodeGetCurrentTime(mem_, &tcur);
+      char* fname = CVodeGetReturnFlagName(flag);
+      std::string reason = std::string(fname ? fname : "CVODE error");
+      std::free(fname);
+      if (!sys_.lastError().empty()) reason += "; " + sys_.lastError();
+      if (!cb_.lastSolverMessage.empty()) reason += "; " + cb_.lastSolverMessage;
+      throw IntegrationError(tcur, reason);
+    }
+    t_ = tout;
+    std::memcpy(y, y_.data(), sizeof(double) * sys_.size());
+    std::string why;
+    if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
+  }
+
+  IntegratorStats stats() const override {
+    IntegratorStats s;
+    long v = 0;
+    if (CVodeGetNumSteps(mem_, &v) == 0) s.steps = v;
+    if (CVodeGetNumRhsEvals(mem_, &v) == 0) s.rhsEvaluations = v;
+    if (CVodeGetNumJacEvals(mem_, &v) == 0) s.jacobianEvaluations = v;
+    long fdRhs = 0;
+    if (CVodeGetNumLinRhsEvals(mem_, &fdRhs) == 0) s.rhsEvaluations += fdRhs;
+    if (CVodeGetNumNonlinSolvIters(mem_, &v) == 0) s.nonlinearIterations = v;
+    if (CVodeGetNumErrTestFails(mem_, &v) == 0) s.errorTestFailures = v;
+    if (CVodeGetNumNonlinSolvConvFails(mem_, &v) == 0) s.convergenceFailures = v;
+    double h = 0;
+    if (CVodeGetLastStep(mem_, &h) == 0) s.lastStep = h;
+    return s;
+  }
+
+ private:
+  void check(int flag, const char* what) {
+    if (flag < 0) throw std::runtime_error(std::string(what) + " failed (flag " + std::to_string(flag) + ")");
+  }
+  OdeSystem& sys_;
+  IntegratorSettings settings_;
+  bool klu_;
+  SundialsContext ctx_;
+  SerialVector y_, atol_;
+  CallbackState cb_;
+  void* mem_ = nullptr;
+  SUNMatrix A_ = nullptr;
+  SUNLinearSolver ls_ = nullptr;
+  bool initialized_ = false;
+  double t_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const IntegratorSettings& s, bool klu) {
+  return std::make_unique<CvodeBdf>(sys, s, klu);
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,46 @@
+// RAII ownership of the SUNDIALS objects of one integrator instance (one SUNContext each, as
+// SUNDIALS is thread-safe only that way) and the C callbacks that forward to an OdeSystem.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+
+#include "ode_system.h"
+
+namespace chaindrive {
+
+struct SundialsContext {
+  SUNContext ctx = nullptr;
+  SundialsContext();
+  ~SundialsContext();
+  SundialsContext(const SundialsContext&) = delete;
+  SundialsContext& operator=(const SundialsContext&) = delete;
+};
+
+struct SerialVector {
+  N_Vector v = nullptr;
+  SerialVector(int n, SUNContext ctx);
+  ~SerialVector();
+  SerialVector(const SerialVector&) = delete;
+  SerialVector& operator=(const SerialVector&) = delete;
+  double* data() { return N_VGetArrayPointer(v); }
+};
+
+/// State shared by the SUNDIALS callbacks of one integrator.
+struct CallbackState {
+  OdeSystem* sys = nullptr;
+  std::string lastSolverMessage;  // from the error handler (never printed)
+};
+
+extern "C" {
+int chaindriveRhs(double t, N_Vector y, N_Vector ydot, void* user) noexcept;
+void chaindriveErrHandler(int code, const char* module, const char* function, char* msg, void* user) noexcept;
+}
+
+/// Absolute tolerances rtol * scale_i into an N_Vector.
+void fillAbsoluteTolerances(OdeSystem& sys, double rtol, N_Vector atol);
+
+}  // namespace chaindrive

@@ -1,0 +1,130 @@
+#include "simulation.h"
+
+#include <cmath>
+
+#include "contact_kinematics.h"
+#include "dynamics.h"
+
+namespace chaindrive {
+
+DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, double blowUpDeformation)
+    : model_(std::move(m)), in_(in), data_(*model_), jac_(*model_), blowUp_(blowUpDeformation) {
+  const Model& md = *model_;
+  velocityOf_.assign(md.nStates, -1);
+  isVelocity_.assign(md.nStates, 0);
+  for (int i = 0; i < md.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) {
+      velocityOf_[6 * i + k] = 6 * i + 3 + k;
+      isVelocity_[6 * i + 3 + k] = 1;
+    }
+  for (const auto& r : md.rotors)
+    if (!r.prescribed) {
+      velocityOf_[r.stateAngle] = r.stateRate;
+      isVelocity_[r.stateRate] = 1;
+    }
+}
+
+int DriveSystem::rhs(double t, const double* y, double* ydot) noexcept {
+  try {
+    forwardCompliant(*model_, data_, in_, t, y, ydot);
+    const int n = model_->nStates;
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(ydot[i])) {
+        lastError_ = "non-finite derivative";
+        return 1;  // recoverable: the integrator retries with a smaller step
+      }
+    return 0;
+  } catch (const std::exception& e) {
+    lastError_ = e.what();
+    return -1;
+  } catch (...) {
+    lastError_ = "unknown exception in the right-hand side";
+    return -1;
+  }
+}
+
+int DriveSystem::jacobian(double t, const double* y, double* values) noexcept {
+  try {
+    jac_.assemble(*model_, data_, in_, t, y, values);
+    return 0;
+  } catch (const std::exception& e) {
+    lastError_ = e.what();
+    return -1;
+  } catch (...) {
+    return -1;
+  }
+}
+
+void DriveSystem::toleranceScales(double* scale) const {
+  const Model& m = *model_;
+  for (int i = 0; i < m.chain.links; ++i) {
+    double* s = scale + 6 * i;
+    s[0] = s[1] = 1e-3;  // m
+    s[2] = 1e-1;         // rad
+    s[3] = s[4] = 1.0;   // m/s
+    s[5] = 1e2;          // rad/s
+  }
+  for (const auto& r : m.rotors) {
+    scale[r.stateAngle] = 1e-2;
+    if (r.stateRate >= 0) scale[r.stateRate] = 10.0;
+  }
+  scale[m.stateInputWork] = 1.0;
+  scale[m.stateDissipated] = 1.0;
+}
+
+bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept {
+  // cheap enough for every fixed step: finiteness of the state, and the joint deformations of
+  // the last right-hand-side evaluation (at or next to this state)
+  const Model& m = *model_;
+  for (int i = 0; i < m.nStates; ++i)
+    if (!std::isfinite(y[i])) {
+      why = "non-finite state (component " + std::to_string(i) + ")";
+      return false;
+    }
+  const double limit = blowUp_ * m.chain.pitch;
+  for (int j = 0; j < m.chain.links; ++j) {
+    const double dist = data_.joints[j].deformation;
+    if (!(dist <= limit)) {
+      why = "blow-up: joint " + std::to_string(j) + " stretched by " + std::to_string(dist * 1e3) + " mm (limit " +
+            std::to_string(limit * 1e3) + " mm) at t = " + std::to_string(t) + " s";
+      return false;
+    }
+  }
+  return true;
+}
+
+Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
+                       std::unique_ptr<InputSignal> inputs)
+    : model_(std::move(model)), options_(opt), inputs_(std::move(inputs)) {
+  system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.blowUpDeformation);
+  integrator_ = makeIntegrator(*system_, options_.integrator);
+  outData_ = std::make_unique<Data>(*model_);
+  y_.assign(model_->nStates, 0.0);
+}
+
+void Simulation::start(double t0) {
+  InputValues v;
+  v.loadTorque.assign(model_->rotors.size(), 0.0);
+  inputs_->evaluate(t0, v);
+  y_ = initialState(*model_, v, options_.preload, preload_);
+  startFrom(t0, y_);
+}
+
+void Simulation::startFrom(double t0, const std::vector<double>& y) {
+  y_ = y;
+  t_ = t0;
+  integrator_->reset(t0, y_.data());
+}
+
+void Simulation::advanceTo(double t) {
+  if (t <= t_) return;
+  integrator_->advance(t, y_.data());
+  t_ = t;
+}
+
+const Outputs& Simulation::outputs() {
+  computeOutputs(*model_, *outData_, *inputs_, t_, y_.data(), options_.monitoredLink, out_);
+  return out_;
+}
+
+}  // namespace chaindrive

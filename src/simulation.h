@@ -1,0 +1,90 @@
+// A simulation run: the model (shared, immutable), its work area, the inputs, the start state
+// and an integrator. The command-line runner and the FMU both drive the solver through this.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "data.h"
+#include "integrators/ode_system.h"
+#include "jacobian.h"
+#include "model.h"
+#include "outputs.h"
+#include "preload.h"
+
+namespace chaindrive {
+
+struct SimulationOptions {
+  IntegratorSettings integrator;
+  PreloadOptions preload;
+  double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch is a blow-up
+  int monitoredLink = -1;           // -1: the model's
+};
+
+/// The compliant-contact chain drive as an ODE system for the integrators.
+class DriveSystem : public OdeSystem {
+ public:
+  DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, double blowUpDeformation);
+  int size() const override { return model_->nStates; }
+  int rhs(double t, const double* y, double* ydot) noexcept override;
+  bool hasJacobian() const override { return true; }
+  int64_t jacobianNonzeros() const override { return jac_.nnz(); }
+  const int64_t* jacobianColumnPointers() const override { return jac_.columnPointers().data(); }
+  const int64_t* jacobianRowIndices() const override { return jac_.rowIndices().data(); }
+  int jacobian(double t, const double* y, double* values) noexcept override;
+  int halfBandwidth() const override { return 11; }
+  void toleranceScales(double* scale) const override;
+  int velocityOf(int i) const override { return velocityOf_[i]; }
+  bool isVelocity(int i) const override { return isVelocity_[i] != 0; }
+  bool healthy(double t, const double* y, std::string& why) noexcept override;
+  const std::string& lastError() const override { return lastError_; }
+  Data& data() { return data_; }
+
+ private:
+  std::shared_ptr<const Model> model_;
+  const InputSignal& in_;
+  Data data_;
+  JacobianAssembler jac_;
+  std::vector<int> velocityOf_;
+  std::vector<char> isVelocity_;
+  double blowUp_;
+  std::string lastError_;
+};
+
+class Simulation {
+ public:
+  Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt, std::unique_ptr<InputSignal> inputs);
+
+  /// Pre-loads the start state for the inputs at t0 and starts the integrator there.
+  void start(double t0);
+  /// Starts (or restarts, e.g. after an FMU state restore) from a given state.
+  void startFrom(double t0, const std::vector<double>& y);
+  /// Integrates to t; throws IntegrationError (time and reason) when the method fails.
+  void advanceTo(double t);
+
+  double time() const { return t_; }
+  const std::vector<double>& state() const { return y_; }
+  const Model& model() const { return *model_; }
+  InputSignal& inputs() { return *inputs_; }
+  const PreloadReport& preloadReport() const { return preload_; }
+  IntegratorStats integratorStats() const { return integrator_->stats(); }
+  long long rhsEvaluations() const { return system_->data().rhsEvaluations; }
+  const std::string& integratorName() const { return options_.integrator.method; }
+  /// Outputs at the current state (evaluates the dynamics once more; no allocation after the first call).
+  const Outputs& outputs();
+
+ private:
+  std::shared_ptr<const Model> model_;
+  SimulationOptions options_;
+  std::unique_ptr<InputSignal> inputs_;
+  std::unique_ptr<DriveSystem> system_;
+  std::unique_ptr<Integrator> integrator_;
+  std::unique_ptr<Data> outData_;
+  std::vector<double> y_;
+  double t_ = 0.0;
+  PreloadReport preload_;
+  Outputs out_;
+};
+
+}  // namespace chaindrive

@@ -1,0 +1,54 @@
+// Helpers for the C++ tests: drives derived from the default one, and short runs.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "drive_description.h"
+#include "inputs.h"
+#include "model.h"
+#include "simulation.h"
+
+namespace chaindrive::test {
+
+inline nlohmann::json defaultJson() { return nlohmann::json::parse(defaultDriveJson(), nullptr, true, true); }
+
+/// The default drive with a modification applied to its JSON.
+inline DriveDescription modifiedDefault(const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json j = defaultJson();
+  edit(j);
+  return parseDriveDescription(j.dump());
+}
+
+/// The problems reported for a modified default drive (empty if it is valid and assembles).
+inline std::vector<std::string> problemsOf(const std::function<void(nlohmann::json&)>& edit) {
+  try {
+    assemble(modifiedDefault(edit));
+  } catch (const DescriptionError& e) {
+    return e.problems();
+  }
+  return {};
+}
+
+inline nlohmann::json& sprocketJson(nlohmann::json& j, const std::string& name) {
+  for (auto& s : j["sprockets"])
+    if (s["name"] == name) return s;
+  throw std::runtime_error("no sprocket " + name);
+}
+
+inline nlohmann::json& guideJson(nlohmann::json& j, const std::string& name) {
+  for (auto& g : j["guides"])
+    if (g["name"] == name) return g;
+  throw std::runtime_error("no guide " + name);
+}
+
+/// Series of one output sampled at every output step.
+struct Series {
+  std::vector<double> t, value;
+};
+
+}  // namespace chaindrive::test
