@@ -40,7 +40,7 @@ setup_python() {
 
 build() {
   echo "== building into $CHAINDRIVE_BUILD"
-  cmake -S . -B "$CHAINDRIVE_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S . -B "$CHAINDRIVE_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$VENV/bin/python" >/dev/null
   cmake --build "$CHAINDRIVE_BUILD" -j "$(nproc)"
 }
 

@@ -43,7 +43,7 @@ def main(argv=None):
     plots.drive_picture(out / "drive.png", args.drive)
     plots.time_histories(out / "time_histories.png", d, args.rpm, title)
     plots.spectra(out / "spectra.png", d, args.rpm, t0, title + " (after the first cycle)")
-    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", monitored link")
+    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0, drive=args.drive)
 
     F = d["tensioner.F"][sel]
     orders_F = plots.dominant_orders(d["time"][sel], F, args.rpm)

@@ -144,20 +144,59 @@ def spectra(path, d, rpm, t0, title):
     plt.close(fig)
 
 
-def link_cycle(path, d, rpm, title):
-    """One cycle of the monitored link: tensile force and contact forces (the paper's Figure 12)."""
-    t = d["time"] * 1e3
-    fig, ax = plt.subplots(2, 1, figsize=(10, 6.5), sharex=True)
-    ax[0].plot(t, d["link.FnSprocket"], lw=0.6, label="with sprockets")
-    ax[0].plot(t, d["link.FnGuide"], lw=0.6, label="with guides")
+def path_position(g, x, y):
+    """Arc length along the nominal chain path of the points (x, y) (nearest path sample)."""
+    p = np.array(g["path"])
+    L = g["pathLength"]
+    s = np.linspace(0.0, L, len(p))
+    d2 = (p[None, :, 0] - np.asarray(x)[:, None]) ** 2 + (p[None, :, 1] - np.asarray(y)[:, None]) ** 2
+    return s[np.argmin(d2, axis=1)]
+
+
+def link_cycle(path, d, rpm, title, t0=0.0, drive=None):
+    """One cycle of the monitored link around the drive: its contact forces with sprockets and
+    guides and its tensile force over its position along the chain path (the paper's Figure 12)."""
+    g = geometry(drive)
+    sel = d["time"] >= t0
+    t = d["time"][sel]
+    pos = path_position(g, d["link.x"][sel], d["link.y"][sel])
+    # one revolution: from the first sample to where the position has advanced by the path length
+    unwrapped = np.concatenate([[0.0], np.cumsum(np.mod(np.diff(pos) + 0.5 * g["pathLength"], g["pathLength"])
+                                                  - 0.5 * g["pathLength"])]) + pos[0]
+    one = unwrapped <= unwrapped[0] + g["pathLength"]
+    s = unwrapped[one]
+    fig, ax = plt.subplots(2, 1, figsize=(11, 6.5), sharex=True)
+    for a in ax:
+        for seg in g["segments"]:
+            lo = seg["start"]
+            # shade the segments in the order the link meets them, from its start position
+            while lo < s[0] - 1e-9:
+                lo += g["pathLength"]
+            for start in (lo - g["pathLength"], lo):
+                if seg["kind"] == "wrap" and start + seg["length"] > s[0] and start < s[-1]:
+                    a.axvspan(start, start + seg["length"], color="0.92" if "Guide" not in seg["element"] else "#dde8f5",
+                              lw=0)
+    for seg in g["segments"]:
+        if seg["kind"] != "wrap":
+            continue
+        lo = seg["start"]
+        while lo < s[0] - 1e-9:
+            lo += g["pathLength"]
+        for start in (lo - g["pathLength"], lo):
+            mid = start + 0.5 * seg["length"]
+            if s[0] <= mid <= s[-1]:
+                ax[0].annotate(seg["element"], (mid, 1.0), xycoords=("data", "axes fraction"), ha="center",
+                               va="bottom", fontsize=7)
+    ax[0].plot(s, d["link.FnSprocket"][sel][one], lw=0.6, label="with sprockets")
+    ax[0].plot(s, d["link.FnGuide"][sel][one], lw=0.6, label="with guides")
     ax[0].set_ylabel("contact normal force [N]")
     ax[0].legend(fontsize=7, loc="upper right")
-    ax[1].plot(t, d["link.F"], lw=0.6)
+    ax[1].plot(s, d["link.F"][sel][one], lw=0.6)
     ax[1].set_ylabel("link tensile force [N]")
-    ax[1].set_xlabel("time [ms]")
+    ax[1].set_xlabel(f"position along the chain path [m] (one revolution: {t[one][-1] - t[0]:.4f} s)")
     for a in ax:
         a.grid(True, lw=0.3)
-    fig.suptitle(title, fontsize=10)
+    fig.suptitle(title, fontsize=10, y=0.995)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

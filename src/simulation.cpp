@@ -116,6 +116,12 @@ void Simulation::startFrom(double t0, const std::vector<double>& y) {
   integrator_->reset(t0, y_.data());
 }
 
+void Simulation::restart(double t, double initialStep) {
+  t_ = t;
+  integrator_->setInitialStep(initialStep);
+  integrator_->reset(t_, y_.data());
+}
+
 void Simulation::advanceTo(double t) {
   if (t <= t_) return;
   integrator_->advance(t, y_.data());

@@ -60,8 +60,13 @@ class Simulation {
   void start(double t0);
   /// Starts (or restarts, e.g. after an FMU state restore) from a given state.
   void startFrom(double t0, const std::vector<double>& y);
-  /// Integrates to t; throws IntegrationError (time and reason) when the method fails.
+  /// Integrates to t; throws IntegrationError (time and reason) when the method fails. The state
+  /// stays at its last successful value.
   void advanceTo(double t);
+  /// Restarts the integrator from the current state, taken to be at time t (a communication step
+  /// that must not depend on the integrator's history: exact rollback, bit-identical instances).
+  /// `initialStep` is the first step adaptive methods try (0: their own estimate).
+  void restart(double t, double initialStep);
 
   double time() const { return t_; }
   const std::vector<double>& state() const { return y_; }

@@ -105,6 +105,15 @@ int main(int argc, char** argv) {
                           {"direction", {m.tensioner.direction.x, m.tensioner.direction.y}}};
       }
       for (const auto& p : m.pins) g["pins"].push_back({p.position.x, p.position.y});
+      for (const auto& seg : m.path.segments()) {
+        const std::string& from = m.description.chain.route[seg.routeIndex];
+        const std::string& to = m.description.chain.route[(seg.routeIndex + 1) % m.description.chain.route.size()];
+        g["segments"].push_back({{"kind", seg.isArc ? "wrap" : "span"},
+                                 {"element", seg.isArc ? from : from + " -> " + to},
+                                 {"start", seg.start},
+                                 {"length", seg.length}});
+      }
+      g["pathLength"] = m.path.length();
       for (int k = 0; k <= 2000; ++k) {
         const Vec2 q = m.path.point(m.path.length() * k / 2000.0);
         g["path"].push_back({q.x, q.y});

@@ -22,6 +22,7 @@ class ArkodeErk : public Integrator {
     if (mem_) ERKStepFree(&mem_);
   }
   std::string name() const override { return fixed_ ? "arkode-erk-fixed" : "arkode-erk"; }
+  void setInitialStep(double h) override { initialStep_ = h; }
 
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * sys_.size());
@@ -41,6 +42,7 @@ class ArkodeErk : public Integrator {
     } else {
       check(ERKStepReset(mem_, t0, y_.v), "ERKStepReset");
     }
+    if (!fixed_) check(ERKStepSetInitStep(mem_, initialStep_), "ERKStepSetInitStep");
   }
 
   void advance(double tout, double* y) override {
@@ -86,6 +88,7 @@ class ArkodeErk : public Integrator {
   CallbackState cb_;
   void* mem_ = nullptr;
   double t_ = 0.0;
+  double initialStep_ = 0.0;
 };
 
 }  // namespace

@@ -45,6 +45,7 @@ class CvodeBdf : public Integrator {
   }
 
   std::string name() const override { return klu_ ? "cvode-bdf-klu" : "cvode-bdf-band"; }
+  void setInitialStep(double h) override { initialStep_ = h; }
 
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * sys_.size());
@@ -76,6 +77,7 @@ class CvodeBdf : public Integrator {
     } else {
       check(CVodeReInit(mem_, t0, y_.v), "CVodeReInit");
     }
+    check(CVodeSetInitStep(mem_, initialStep_), "CVodeSetInitStep");
   }
 
   void advance(double tout, double* y) override {
@@ -129,6 +131,7 @@ class CvodeBdf : public Integrator {
   SUNLinearSolver ls_ = nullptr;
   bool initialized_ = false;
   double t_ = 0.0;
+  double initialStep_ = 0.0;
 };
 
 }  // namespace

@@ -76,6 +76,8 @@ class Integrator {
   virtual void advance(double tout, double* y) = 0;
   virtual IntegratorStats stats() const = 0;
   virtual std::string name() const = 0;
+  /// First step to try after the next reset (adaptive methods); 0 lets the method choose.
+  virtual void setInitialStep(double /*h*/) {}
 };
 
 std::vector<std::string> integratorNames();

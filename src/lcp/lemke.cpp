@@ -1,0 +1,531 @@
+// Lemke's method with lexicographic degeneracy resolution; readers of the Siconos test formats;
+// the LCP form of planar friction-contact problems. See lemke.h for the method and conventions.
+#include "lcp/lemke.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+namespace chaindrive::lcp {
+
+namespace {
+
+// An entry a_i of the entering column counts as positive only above this factor times the bound
+// |B^-1 row i|_1 |A_e|_inf of its rounding error: smaller ones are rounding noise of zeros.
+constexpr double kPivotTolerance = 1e-11;
+// Two ratios (or two lexicographic components) tie within this factor times their rounding
+// bounds; exact degeneracy shows up as near ties after rounding.
+constexpr double kTieTolerance = 1e-11;
+// The inverse basis is recomputed from scratch every this many pivots.
+constexpr int kRefactorInterval = 50;
+
+double naturalMapError(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                       const Eigen::Ref<const Eigen::VectorXd>& z) {
+  const Eigen::Index n = q.size();
+  double sum = 0.0, qsum = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double w = q(i);
+    for (Eigen::Index j = 0; j < n; ++j) w += M(i, j) * z(j);
+    const double e = z(i) - std::max(0.0, z(i) - w);
+    sum += e * e;
+    qsum += q(i) * q(i);
+  }
+  const double err = std::sqrt(sum), qn = std::sqrt(qsum);
+  return qn > std::numeric_limits<double>::epsilon() ? err / qn : err;
+}
+
+}  // namespace
+
+const char* statusName(Status s) noexcept {
+  switch (s) {
+    case Status::Solved: return "Solved";
+    case Status::RayTermination: return "RayTermination";
+    case Status::IterationLimit: return "IterationLimit";
+    case Status::NumericalFailure: return "NumericalFailure";
+  }
+  return "Unknown";
+}
+
+double lcpError(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                const Eigen::Ref<const Eigen::VectorXd>& z) {
+  if (M.rows() != q.size() || M.cols() != q.size() || z.size() != q.size())
+    throw std::invalid_argument("lcpError: M, q and z sizes differ");
+  return naturalMapError(M, q, z);
+}
+
+// ---------------------------------------------------------------------------------------------
+// LemkeSolver
+
+LemkeSolver::LemkeSolver(int capacity) { reserve(capacity); }
+
+void LemkeSolver::reserve(int n) {
+  if (n <= capacity_) return;
+  capacity_ = n;
+  binv_.resize(n, n);
+  work_.resize(n, n);
+  b_.resize(n);
+  a_.resize(n);
+  rowr_.resize(n);
+  rowNorm_.resize(n);
+  tmp_.resize(n);
+  zBest_.resize(n);
+  basis_.assign(static_cast<std::size_t>(n), 0);
+  cand_.assign(static_cast<std::size_t>(n), 0);
+}
+
+int LemkeSolver::defaultMaxPivots(int n) noexcept {
+  const long long v = std::max(1000LL, 50LL * n);
+  return static_cast<int>(std::min<long long>(v, std::numeric_limits<int>::max()));
+}
+
+Result LemkeSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          Eigen::VectorXd& z, int maxPivots) {
+  if (M.rows() != q.size() || M.cols() != q.size())
+    throw std::invalid_argument("LemkeSolver::solve: M is " + std::to_string(M.rows()) + "x" +
+                                std::to_string(M.cols()) + " but q has size " + std::to_string(q.size()));
+  if (z.size() != q.size()) z.resize(q.size());
+  return run(M, q, z, maxPivots);
+}
+
+Result LemkeSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          Eigen::Ref<Eigen::VectorXd> z, int maxPivots) {
+  if (M.rows() != q.size() || M.cols() != q.size() || z.size() != q.size())
+    throw std::invalid_argument("LemkeSolver::solve: M is " + std::to_string(M.rows()) + "x" +
+                                std::to_string(M.cols()) + ", q has size " + std::to_string(q.size()) +
+                                ", z has size " + std::to_string(z.size()));
+  return run(M, q, z, maxPivots);
+}
+
+// The column B^-1 A_e of variable var into a; colNorm = |A_e|_inf. The columns of the augmented
+// system w - M z - d z0 = q: w_k -> e_k, z_k -> -M_.k, z0 -> -d = -(1, ..., 1).
+void LemkeSolver::column(const Eigen::Ref<const Eigen::MatrixXd>& M, int n, int var, double* a,
+                         double& colNorm) const {
+  Eigen::Map<Eigen::VectorXd> av(a, n);
+  if (var < n) {
+    av = binv_.col(var).head(n);
+    colNorm = 1.0;
+  } else if (var < 2 * n) {
+    const int k = var - n;
+    av.setZero();
+    colNorm = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double m = M(j, k);
+      if (m == 0.0) continue;
+      av.noalias() -= m * binv_.col(j).head(n);
+      colNorm = std::max(colNorm, std::abs(m));
+    }
+  } else {
+    av.setZero();
+    for (int j = 0; j < n; ++j) av.noalias() -= binv_.col(j).head(n);
+    colNorm = 1.0;
+  }
+}
+
+// Lexicographic minimum ratio test on the entering column a_; returns the pivot row or -1 (no
+// positive entry: ray termination).
+int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
+  int nc = 0;
+  for (int i = 0; i < n; ++i) {
+    const double ai = a_(i);
+    if (!(ai > 0.0)) continue;
+    const double rn = binv_.row(i).head(n).lpNorm<1>();
+    rowNorm_(i) = rn;
+    if (ai > kPivotTolerance * rn * colNorm) cand_[static_cast<std::size_t>(nc++)] = i;
+  }
+  if (nc == 0) return -1;
+
+  // First component: the ratio b_i / a_i (b_i >= 0 up to rounding).
+  auto ratio = [&](int i) { return std::max(b_(i), 0.0) / a_(i); };
+  auto ratioNoise = [&](int i) { return kTieTolerance * rowNorm_(i) * qNorm / a_(i); };
+  int imin = cand_[0];
+  for (int c = 1; c < nc; ++c) {
+    const int i = cand_[static_cast<std::size_t>(c)];
+    if (ratio(i) < ratio(imin)) imin = i;
+  }
+  {
+    const double tmin = ratio(imin), nmin = ratioNoise(imin);
+    int kept = 0;
+    for (int c = 0; c < nc; ++c) {
+      const int i = cand_[static_cast<std::size_t>(c)];
+      if (ratio(i) - tmin <= ratioNoise(i) + nmin) cand_[static_cast<std::size_t>(kept++)] = i;
+    }
+    nc = kept;
+  }
+  if (nc == 1) return cand_[0];
+  // z0 among the minimisers: let it leave (that ends the method with a solution).
+  for (int c = 0; c < nc; ++c)
+    if (basis_[static_cast<std::size_t>(cand_[static_cast<std::size_t>(c)])] == 2 * n)
+      return cand_[static_cast<std::size_t>(c)];
+
+  // Further components: the columns of B^-1, divided by a_i, in order.
+  for (int k = 0; k < n && nc > 1; ++k) {
+    auto value = [&](int i) { return binv_(i, k) / a_(i); };
+    auto noise = [&](int i) { return kTieTolerance * rowNorm_(i) / a_(i); };
+    imin = cand_[0];
+    for (int c = 1; c < nc; ++c) {
+      const int i = cand_[static_cast<std::size_t>(c)];
+      if (value(i) < value(imin)) imin = i;
+    }
+    const double vmin = value(imin), nmin = noise(imin);
+    int kept = 0;
+    for (int c = 0; c < nc; ++c) {
+      const int i = cand_[static_cast<std::size_t>(c)];
+      if (value(i) - vmin <= noise(i) + nmin) cand_[static_cast<std::size_t>(kept++)] = i;
+    }
+    nc = kept;
+  }
+  // Still tied (only for a numerically singular basis): the largest pivot, then the first row.
+  int best = cand_[0];
+  for (int c = 1; c < nc; ++c) {
+    const int i = cand_[static_cast<std::size_t>(c)];
+    if (a_(i) > a_(best)) best = i;
+  }
+  return best;
+}
+
+// Pivot on row r with the entering column a_: the rank-one update of B^-1 and b.
+void LemkeSolver::pivot(int n, int r) {
+  const double ar = a_(r);
+  rowr_.head(n) = binv_.row(r).head(n).transpose() / ar;
+  for (int j = 0; j < n; ++j) {
+    const double t = rowr_(j);
+    if (t != 0.0) binv_.col(j).head(n).noalias() -= t * a_.head(n);
+    binv_(r, j) = t;
+  }
+  const double br = b_(r) / ar;
+  b_.head(n).noalias() -= br * a_.head(n);
+  b_(r) = br;
+}
+
+// Recomputes B^-1 from the basis (Gauss-Jordan with partial pivoting) and b = B^-1 q with one
+// step of iterative refinement. Returns false if the basis is numerically singular.
+bool LemkeSolver::refactor(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                           int n) {
+  auto W = work_.topLeftCorner(n, n);
+  auto Bi = binv_.topLeftCorner(n, n);
+  for (int j = 0; j < n; ++j) {
+    const int var = basis_[static_cast<std::size_t>(j)];
+    if (var < n) {
+      W.col(j).setZero();
+      W(var, j) = 1.0;
+    } else if (var < 2 * n) {
+      W.col(j) = -M.col(var - n);
+    } else {
+      W.col(j).setConstant(-1.0);
+    }
+  }
+  const double scale = W.cwiseAbs().maxCoeff();
+  const double tiny = static_cast<double>(n) * std::numeric_limits<double>::epsilon() * scale;
+  Bi.setIdentity();
+  for (int j = 0; j < n; ++j) {
+    int p = j;
+    for (int i = j + 1; i < n; ++i)
+      if (std::abs(W(i, j)) > std::abs(W(p, j))) p = i;
+    const double piv = W(p, j);
+    if (!(std::abs(piv) > tiny)) return false;  // also catches NaN
+    if (p != j) {
+      W.row(j).swap(W.row(p));
+      Bi.row(j).swap(Bi.row(p));
+    }
+    W.row(j) /= piv;
+    Bi.row(j) /= piv;
+    // Eliminate column j from the other rows: a rank-one update with f = W_.j (f_j = 0).
+    tmp_.head(n) = W.col(j);
+    tmp_(j) = 0.0;
+    for (int c = 0; c < n; ++c) {
+      const double t = W(j, c);
+      if (t != 0.0) W.col(c).noalias() -= t * tmp_.head(n);
+      const double s = Bi(j, c);
+      if (s != 0.0) Bi.col(c).noalias() -= s * tmp_.head(n);
+    }
+  }
+  // b = B^-1 q, then b += B^-1 (q - B b).
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 0) {
+      tmp_.head(n) = q;
+      b_.head(n).setZero();
+    } else {
+      tmp_.head(n) = q;
+      for (int j = 0; j < n; ++j) {
+        const int var = basis_[static_cast<std::size_t>(j)];
+        const double x = b_(j);
+        if (var < n) tmp_(var) -= x;
+        else if (var < 2 * n) tmp_.head(n).noalias() += x * M.col(var - n);
+        else tmp_.head(n).array() += x;
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      const double t = tmp_(j);
+      if (t != 0.0) b_.head(n).noalias() += t * Bi.col(j);
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(b_(i))) return false;
+  return true;
+}
+
+void LemkeSolver::extractZ(int n, Eigen::Ref<Eigen::VectorXd> z) const {
+  z.setZero();
+  for (int i = 0; i < n; ++i) {
+    const int var = basis_[static_cast<std::size_t>(i)];
+    if (var >= n && var < 2 * n) z(var - n) = std::max(b_(i), 0.0);
+  }
+}
+
+Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                        Eigen::Ref<Eigen::VectorXd> z, int maxPivots) {
+  const int n = static_cast<int>(q.size());
+  Result res;
+  if (maxPivots < 0) maxPivots = defaultMaxPivots(n);
+  if (n == 0) {
+    res.status = Status::Solved;
+    return res;
+  }
+  reserve(n);
+
+  bool finite = true;
+  for (int j = 0; j < n && finite; ++j) {
+    finite = std::isfinite(q(j));
+    for (int i = 0; i < n && finite; ++i) finite = std::isfinite(M(i, j));
+  }
+  if (!finite) {
+    z.setZero();
+    res.status = Status::NumericalFailure;
+    res.error = std::numeric_limits<double>::quiet_NaN();
+    return res;
+  }
+
+  // q >= 0: z = 0. Otherwise the row of the most negative q_i leaves when z0 enters; among
+  // equal q_i the last row is the lexicographic minimum of the rows (q_i, e_i').
+  int r = 0;
+  for (int i = 1; i < n; ++i)
+    if (q(i) <= q(r)) r = i;
+  if (q(r) >= 0.0) {
+    z.setZero();
+    res.status = Status::Solved;
+    res.error = naturalMapError(M, q, z);
+    return res;
+  }
+
+  binv_.topLeftCorner(n, n).setIdentity();
+  b_.head(n) = q;
+  for (int i = 0; i < n; ++i) basis_[static_cast<std::size_t>(i)] = i;
+  const double qNorm = q.lpNorm<Eigen::Infinity>();
+
+  // The initial pivot: z0 enters (column -d), w_r leaves. Not counted (see lemke.h).
+  a_.head(n).setConstant(-1.0);
+  pivot(n, r);
+  basis_[static_cast<std::size_t>(r)] = 2 * n;
+  int entering = n + r;  // the complement of w_r
+
+  int pivots = 0;
+  Status status = Status::NumericalFailure;
+  for (;;) {
+    if (pivots >= maxPivots) {
+      status = Status::IterationLimit;
+      break;
+    }
+    double colNorm = 0.0;
+    column(M, n, entering, a_.data(), colNorm);
+    const int row = ratioTest(n, qNorm, colNorm);
+    if (row < 0) {
+      status = Status::RayTermination;
+      break;
+    }
+    pivot(n, row);
+    ++pivots;
+    const int leaving = basis_[static_cast<std::size_t>(row)];
+    basis_[static_cast<std::size_t>(row)] = entering;
+    if (leaving == 2 * n) {
+      status = Status::Solved;
+      break;
+    }
+    entering = leaving < n ? leaving + n : leaving - n;
+    bool ok = true;
+    for (int i = 0; i < n && ok; ++i) ok = std::isfinite(b_(i));
+    if (ok && pivots % kRefactorInterval == 0) ok = refactor(M, q, n);
+    if (!ok) {
+      status = Status::NumericalFailure;
+      break;
+    }
+  }
+
+  res.status = status;
+  res.pivots = pivots;
+  extractZ(n, z);
+  res.error = naturalMapError(M, q, z);
+  if (status == Status::Solved) {
+    // Polish: the same basis from a fresh factorization; keep the better of the two.
+    zBest_.head(n) = z;
+    if (refactor(M, q, n)) {
+      extractZ(n, z);
+      const double e = naturalMapError(M, q, z);
+      if (e < res.error) res.error = e;
+      else z = zBest_.head(n);
+    }
+    if (!std::isfinite(res.error)) res.status = Status::NumericalFailure;
+  }
+  return res;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Readers
+
+namespace {
+
+class TokenReader {
+ public:
+  explicit TokenReader(const std::string& path) : path_(path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot open the file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text_ = ss.str();
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw std::runtime_error(path_ + ": " + what); }
+
+  std::string_view next() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    return std::string_view(text_).substr(start, pos_ - start);
+  }
+
+  long long integer(const std::string& what) {
+    const std::string_view t = next();
+    if (t.empty()) fail("expected " + what + " (an integer), found the end of the file");
+    long long v = 0;
+    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || p != t.data() + t.size())
+      fail("expected " + what + " (an integer), found '" + std::string(t) + "'");
+    return v;
+  }
+
+  double number(const std::string& what) {
+    std::string_view t = next();
+    if (t.empty()) fail("expected " + what + ", found the end of the file");
+    std::string_view u = t;
+    if (u.size() > 1 && u[0] == '+') u.remove_prefix(1);
+    double v = 0.0;
+    const auto [p, ec] = std::from_chars(u.data(), u.data() + u.size(), v);
+    if (ec != std::errc() || p != u.data() + u.size())
+      fail("expected " + what + " (a number), found '" + std::string(t) + "'");
+    return v;
+  }
+
+  std::string rest() const {
+    std::size_t a = pos_, b = text_.size();
+    while (a < b && std::isspace(static_cast<unsigned char>(text_[a]))) ++a;
+    while (b > a && std::isspace(static_cast<unsigned char>(text_[b - 1]))) --b;
+    return text_.substr(a, b - a);
+  }
+
+ private:
+  std::string path_, text_;
+  std::size_t pos_ = 0;
+};
+
+constexpr long long kMaxSize = 20000;
+
+// The matrix block after its size: 0 (dense), rows, cols, rows, cols, entries column-major.
+Eigen::MatrixXd readDenseMatrix(TokenReader& in, long long n, const std::string& name) {
+  const long long storage = in.integer("the storage type of " + name);
+  if (storage != 0)
+    in.fail("storage type " + std::to_string(storage) + " of " + name + " is not supported (only 0 = dense)");
+  const char* labels[4] = {"the number of rows", "the number of columns", "the number of rows (repeated)",
+                           "the number of columns (repeated)"};
+  for (const char* label : labels) {
+    const long long v = in.integer(std::string(label) + " of " + name);
+    if (v != n)
+      in.fail(std::string(label) + " of " + name + " is " + std::to_string(v) + ", expected " + std::to_string(n));
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd A(m, m);
+  for (Eigen::Index k = 0; k < m * m; ++k)
+    A(k % m, k / m) = in.number("entry " + std::to_string(k + 1) + " of the " + std::to_string(m * m) + " of " + name);
+  return A;
+}
+
+}  // namespace
+
+Problem readLcpFile(const std::string& path) {
+  TokenReader in(path);
+  const long long n = in.integer("the problem size n");
+  if (n < 1 || n > kMaxSize)
+    in.fail("problem size " + std::to_string(n) + " is out of range; allowed 1.." + std::to_string(kMaxSize));
+  Problem p;
+  p.M = readDenseMatrix(in, n, "M");
+  p.q.resize(static_cast<Eigen::Index>(n));
+  for (Eigen::Index i = 0; i < p.q.size(); ++i)
+    p.q(i) = in.number("entry " + std::to_string(i + 1) + " of the " + std::to_string(n) + " of q");
+  p.comment = in.rest();
+  return p;
+}
+
+FrictionProblem readFc2dFile(const std::string& path) {
+  TokenReader in(path);
+  const long long dim = in.integer("the dimension");
+  if (dim != 2) in.fail("dimension " + std::to_string(dim) + " is not supported (only 2 = planar friction contact)");
+  const long long nc = in.integer("the number of contacts");
+  if (nc < 1 || 2 * nc > kMaxSize)
+    in.fail("number of contacts " + std::to_string(nc) + " is out of range; allowed 1.." + std::to_string(kMaxSize / 2));
+  FrictionProblem p;
+  p.W = readDenseMatrix(in, 2 * nc, "W");
+  p.q.resize(static_cast<Eigen::Index>(2 * nc));
+  for (Eigen::Index i = 0; i < p.q.size(); ++i)
+    p.q(i) = in.number("entry " + std::to_string(i + 1) + " of the " + std::to_string(2 * nc) + " of q");
+  p.mu.resize(static_cast<Eigen::Index>(nc));
+  for (Eigen::Index i = 0; i < p.mu.size(); ++i) {
+    p.mu(i) = in.number("friction coefficient " + std::to_string(i + 1) + " of " + std::to_string(nc));
+    if (!(std::isfinite(p.mu(i)) && p.mu(i) >= 0.0))
+      in.fail("friction coefficient " + std::to_string(i + 1) + " is " + std::to_string(p.mu(i)) +
+              "; it must be finite and >= 0");
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Planar friction contact as an LCP
+
+void frictionToLcp(const FrictionProblem& p, Eigen::MatrixXd& M, Eigen::VectorXd& q) {
+  const Eigen::Index nc = p.mu.size();
+  if (p.W.rows() != 2 * nc || p.W.cols() != 2 * nc || p.q.size() != 2 * nc)
+    throw std::invalid_argument("frictionToLcp: W must be 2nc x 2nc and q of size 2nc for nc = mu.size()");
+  M.setZero(3 * nc, 3 * nc);
+  q.resize(3 * nc);
+  for (Eigen::Index i = 0; i < nc; ++i) {
+    for (Eigen::Index j = 0; j < nc; ++j) {
+      // u_N^i and u_T^i in terms of r_N^j and r'_T^j (r_T^j = r'_T^j - mu_j r_N^j).
+      for (Eigen::Index s = 0; s < 2; ++s) {
+        const double wN = p.W(2 * i + s, 2 * j), wT = p.W(2 * i + s, 2 * j + 1);
+        M(3 * i + s, 3 * j) = wN - p.mu(j) * wT;
+        M(3 * i + s, 3 * j + 1) = wT;
+      }
+    }
+    M(3 * i + 1, 3 * i + 2) = 1.0;          // u_T + lambda
+    M(3 * i + 2, 3 * i) = 2.0 * p.mu(i);    // 2 mu r_N - r'_T
+    M(3 * i + 2, 3 * i + 1) = -1.0;
+    q(3 * i) = p.q(2 * i);
+    q(3 * i + 1) = p.q(2 * i + 1);
+    q(3 * i + 2) = 0.0;
+  }
+}
+
+void lcpToForces(const FrictionProblem& p, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::VectorXd& r) {
+  const Eigen::Index nc = p.mu.size();
+  if (z.size() != 3 * nc) throw std::invalid_argument("lcpToForces: z must have size 3 nc");
+  r.resize(2 * nc);
+  for (Eigen::Index i = 0; i < nc; ++i) {
+    r(2 * i) = z(3 * i);
+    r(2 * i + 1) = z(3 * i + 1) - p.mu(i) * z(3 * i);
+  }
+}
+
+}  // namespace chaindrive::lcp

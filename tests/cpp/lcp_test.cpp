@@ -1,0 +1,876 @@
+// Lemke's method (src/lcp/lemke.*): the Siconos LCP collection with the expected results of its
+// README, Murty's exponential example, random P-matrix and positive semidefinite problems
+// against a brute-force enumeration of all complementary bases, caps and failures, planar
+// friction contact through the LCP form, determinism, no heap allocation per solve, the readers
+// and the command-line tool.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+
+#include <Eigen/Dense>
+
+#include "lcp/lemke.h"
+
+// ---------------------------------------------------------------------------------------------
+// Allocation counting for LcpAllocation.*: malloc, calloc and realloc of this executable forward
+// to glibc's implementations and count calls while gCountAllocations is set (Eigen allocates
+// through malloc, operator new ends in malloc too). Only with glibc and without sanitizers (they
+// bring their own malloc); elsewhere the test is skipped.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#define LCP_TEST_COUNTS_ALLOCATIONS 1
+namespace {
+std::atomic<bool> gCountAllocations{false};
+std::atomic<long> gAllocations{0};
+}  // namespace
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t n, std::size_t size);
+void* __libc_realloc(void* p, std::size_t size);
+void* malloc(std::size_t size) noexcept {
+  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t n, std::size_t size) noexcept {
+  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t size) noexcept {
+  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, size);
+}
+}
+#endif
+
+using namespace chaindrive::lcp;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+std::string dataPath(const std::string& name) { return std::string(CHAINDRIVE_SOURCE_DIR) + "/tests/data/lcp/" + name; }
+
+struct Outcome {
+  Result result;
+  VectorXd z;
+};
+
+Outcome solveProblem(const MatrixXd& M, const VectorXd& q, int maxPivots = -1) {
+  LemkeSolver solver;
+  Outcome o;
+  o.result = solver.solve(M, q, o.z, maxPivots);
+  return o;
+}
+
+// Murty's exponential example: M_ii = 1, M_ij = 2 (j > i), 0 below; q_i = -sum_{j=i..n} 2^j
+// (1-based). Solution 2^n e_n after 2^n - 1 pivots.
+void murty(int n, MatrixXd& M, VectorXd& q) {
+  M = MatrixXd::Zero(n, n);
+  q.resize(n);
+  for (int i = 0; i < n; ++i) {
+    M(i, i) = 1.0;
+    for (int j = i + 1; j < n; ++j) M(i, j) = 2.0;
+    double s = 0.0;
+    for (int j = i + 1; j <= n; ++j) s += std::ldexp(1.0, j);
+    q(i) = -s;
+  }
+}
+
+// A portable uniform generator (the same numbers with every standard library).
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed) : g_(seed) {}
+  double uniform(double a, double b) { return a + (b - a) * static_cast<double>(g_() >> 11) * 0x1.0p-53; }
+  int integer(int a, int b) { return a + static_cast<int>(g_() % static_cast<std::uint64_t>(b - a + 1)); }
+
+ private:
+  std::mt19937_64 g_;
+};
+
+// Brute force over all 2^n complementary bases: z_S = -M_SS^-1 q_S, z = 0 elsewhere; a basis
+// solves the LCP if z >= 0 and w = M z + q >= 0 up to `tol` (absolute). Bases with a numerically
+// singular M_SS (relative pivot threshold 1e-10) are skipped; a solvable LCP always has a
+// solution in a nonsingular complementary basis (the one Lemke ends in).
+struct Enumeration {
+  int solutions = 0;  // bases that solve the LCP (several if degenerate)
+  VectorXd z;         // the one with the smallest violation
+  double violation = std::numeric_limits<double>::infinity();
+};
+
+Enumeration enumerate(const MatrixXd& M, const VectorXd& q, double tol) {
+  const int n = static_cast<int>(q.size());
+  Enumeration e;
+  std::vector<int> S;
+  for (unsigned mask = 0; mask < (1u << n); ++mask) {
+    S.clear();
+    for (int i = 0; i < n; ++i)
+      if (mask & (1u << i)) S.push_back(i);
+    const int s = static_cast<int>(S.size());
+    VectorXd z = VectorXd::Zero(n);
+    if (s > 0) {
+      MatrixXd A(s, s);
+      VectorXd b(s);
+      for (int a = 0; a < s; ++a) {
+        b(a) = -q(S[a]);
+        for (int c = 0; c < s; ++c) A(a, c) = M(S[a], S[c]);
+      }
+      Eigen::FullPivLU<MatrixXd> lu(A);
+      lu.setThreshold(1e-10);
+      if (!lu.isInvertible()) continue;
+      const VectorXd zS = lu.solve(b);
+      for (int a = 0; a < s; ++a) z(S[a]) = zS(a);
+    }
+    const VectorXd w = M * z + q;
+    double v = 0.0;
+    for (int i = 0; i < n; ++i) v = std::max({v, -z(i), -w(i)});
+    if (v <= tol) {
+      ++e.solutions;
+      if (v < e.violation) {
+        e.violation = v;
+        e.z = z;
+      }
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+// =============================================================================================
+// The collection: every file of tests/data/lcp with the status and solution of its README.
+
+struct CollectionCase {
+  const char* file;
+  Status status;
+  int pivots;                  // expected pivot count, -1: not checked
+  std::vector<double> z;       // expected leading entries of z (empty: not checked)
+  double zTol;                 // absolute tolerance on those entries
+};
+
+// Tolerances: exact listed values (fractions, integers) are compared to 1e-13 absolute (a few
+// hundred rounding units of O(1) data after a handful of pivots; the final basis is refactorized
+// and refined); values listed to k decimal digits are compared to half a unit in the last
+// listed digit (the rounding of the table itself). Pivot counts are those of Siconos'
+// lexicographic Lemke where the README gives them: the same pivoting rule gives the same path.
+const std::vector<CollectionCase>& collection() {
+  static const std::vector<CollectionCase> cases = {
+      {"lcp_deudeu.dat", Status::Solved, 2, {4.0 / 3.0, 7.0 / 3.0}, 1e-13},
+      {"lcp_trivial.dat", Status::Solved, -1, {1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5, 1.0 / 6, 1.0 / 7, 1.0 / 8, 1.0 / 9}, 1e-13},
+      {"lcp_ortiz.dat", Status::Solved, -1, {2.0 / 3.0, 0.0, 1.0 / 3.0, 0.0}, 1e-13},
+      {"lcp_CPS_1.dat", Status::Solved, -1, {}, 0.0},  // z1 + z2 = 1, checked below
+      {"lcp_CPS_2.dat", Status::Solved, -1, {0.0, 1.0, 3.0}, 1e-13},
+      {"lcp_CPS_3.dat", Status::RayTermination, -1, {}, 0.0},
+      {"lcp_CPS_4.dat", Status::Solved, -1, {2.0, 2.0, 2.0, 92.0}, 1e-12},  // 92: 1e-13 of its size
+      {"lcp_CPS_4bis.dat", Status::Solved, -1, {3.0, 3.0, 0.0, 83.0}, 1e-12},
+      {"lcp_CPS_5.dat", Status::Solved, -1, {0.0, 1.0}, 1e-13},
+      {"lcp_mmc.dat", Status::Solved, 22, {1.4914e-4, 1.4102e-4}, 0.5e-8},           // 5 significant digits
+      {"lcp_exp_murty.dat", Status::Solved, -1, {0, 0, 0, 0, 0, 1}, 1e-13},
+      {"lcp_Pang_isolated_sol.dat", Status::Solved, -1, {1.0, 0.0, 0.0}, 1e-13},
+      {"lcp_inf_sol_perturbed.dat", Status::Solved, -1, {1.0, 0.0, 1e-4}, 1e-13},
+      {"lcp_enum_fails.dat", Status::Solved, 7, {6.4499e-5, 3.7109e-6, 0.0, 8.0163e-5}, 0.5e-9},  // 5 digits of the largest
+      {"lcp_tobenna.dat", Status::Solved, 126, {0.5422, 0.4578}, 0.5e-4},             // 4 decimals
+      {"lcp_exp_murty2.dat", Status::Solved, 63, {0, 0, 0, 0, 0, 64.0}, 1e-12},
+      {"lcp_Pang_isolated_sol_perturbed.dat", Status::RayTermination, -1, {}, 0.0},
+  };
+  return cases;
+}
+
+class LcpCollection : public ::testing::TestWithParam<CollectionCase> {};
+
+// Status, pivots and solution as in the README; error <= 1e-12 where solved (the exact
+// solution's error is 0; the computed one carries only rounding: seen up to 6e-14 on tobenna).
+TEST_P(LcpCollection, MatchesTheExpectedResult) {
+  const CollectionCase& c = GetParam();
+  const Problem p = readLcpFile(dataPath(c.file));
+  const Outcome o = solveProblem(p.M, p.q);
+  ASSERT_EQ(statusName(o.result.status), std::string(statusName(c.status)));
+  if (c.pivots >= 0) EXPECT_EQ(o.result.pivots, c.pivots);
+  if (c.status == Status::Solved) {
+    EXPECT_LE(o.result.error, 1e-12);
+    EXPECT_DOUBLE_EQ(o.result.error, lcpError(p.M, p.q, o.z));
+    EXPECT_GE(o.z.minCoeff(), 0.0);
+  }
+  for (std::size_t i = 0; i < c.z.size(); ++i)
+    EXPECT_NEAR(o.z(static_cast<Eigen::Index>(i)), c.z[i], c.zTol) << "z_" << i + 1;
+  RecordProperty("pivots", o.result.pivots);
+  std::printf("  %-40s %-15s pivots %4d  error %.3g\n", c.file, statusName(o.result.status), o.result.pivots,
+              o.result.error);
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, LcpCollection, ::testing::ValuesIn(collection()),
+                         [](const ::testing::TestParamInfo<CollectionCase>& info) {
+                           std::string s = info.param.file;
+                           s = s.substr(0, s.find('.'));
+                           for (char& ch : s)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return s;
+                         });
+
+// The table above covers every problem file of the collection (a new file must be added).
+TEST(LcpCollectionFiles, TableCoversEveryFile) {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dataPath("")))
+    if (entry.path().extension() == ".dat") files.push_back(entry.path().filename().string());
+  EXPECT_EQ(files.size(), collection().size());
+  for (const auto& f : files) {
+    bool found = false;
+    for (const auto& c : collection()) found = found || f == c.file;
+    EXPECT_TRUE(found) << f << " is not in the test table";
+  }
+}
+
+// CPS_1: M = [[1, 1], [1, 1]], q = (-1, -1): every z >= 0 with z1 + z2 = 1 solves it (singular
+// M); the sum is exact up to rounding (1e-14).
+TEST(LcpCollectionDetails, Cps1SolutionOnTheSegment) {
+  const Problem p = readLcpFile(dataPath("lcp_CPS_1.dat"));
+  const Outcome o = solveProblem(p.M, p.q);
+  ASSERT_EQ(o.result.status, Status::Solved);
+  EXPECT_NEAR(o.z(0) + o.z(1), 1.0, 1e-14);
+  EXPECT_GE(o.z.minCoeff(), 0.0);
+  EXPECT_NE(p.comment.find("z_1 + z_2 = 1"), std::string::npos) << p.comment;
+}
+
+// CPS_3 (a bimatrix game): Lemke stops on a ray although a solution exists; the README's
+// enumerated solution (1/90, 2/45, 1/90, 2/45) does solve it (error at rounding level, 1e-15).
+TEST(LcpCollectionDetails, Cps3RayTerminationThoughASolutionExists) {
+  const Problem p = readLcpFile(dataPath("lcp_CPS_3.dat"));
+  EXPECT_EQ(solveProblem(p.M, p.q).result.status, Status::RayTermination);
+  VectorXd z(4);
+  z << 1.0 / 90, 2.0 / 45, 1.0 / 90, 2.0 / 45;
+  EXPECT_LE(lcpError(p.M, p.q, z), 1e-15);
+}
+
+// Pang perturbed: row 1 of M is (0, -1, -1) and q_1 = -1e-4, so w_1 < 0 for every z >= 0: there is
+// no solution, and the solver must not claim one (exact data check, then the status).
+TEST(LcpCollectionDetails, PangPerturbedHasNoSolutionAndIsNotSolved) {
+  const Problem p = readLcpFile(dataPath("lcp_Pang_isolated_sol_perturbed.dat"));
+  EXPECT_EQ(p.M(0, 0), 0.0);
+  EXPECT_EQ(p.M(0, 1), -1.0);
+  EXPECT_EQ(p.M(0, 2), -1.0);
+  EXPECT_EQ(p.q(0), -1e-4);
+  const Outcome o = solveProblem(p.M, p.q);
+  EXPECT_NE(o.result.status, Status::Solved);
+  EXPECT_EQ(o.result.status, Status::RayTermination);
+}
+
+// =============================================================================================
+// Murty's exponential example
+
+// n = 4..14: exactly 2^n - 1 pivots (the pivot convention of lemke.h: the initial pivot of z0 is
+// not counted) and z = 2^n e_n. The data are small integers and the pivots are +-1 and +-2, so
+// the arithmetic is exact: z is compared exactly. The cap is set to exactly 2^n - 1: a problem
+// solved in exactly maxPivots pivots is Solved.
+TEST(LcpMurty, ExponentialPivotCountAndSolution) {
+  LemkeSolver solver(14);
+  for (int n = 4; n <= 14; ++n) {
+    MatrixXd M;
+    VectorXd q, z;
+    murty(n, M, q);
+    const int expected = (1 << n) - 1;
+    const Result r = solver.solve(M, q, z, expected);
+    ASSERT_EQ(r.status, Status::Solved) << "n = " << n;
+    EXPECT_EQ(r.pivots, expected) << "n = " << n;
+    VectorXd zExact = VectorXd::Zero(n);
+    zExact(n - 1) = std::ldexp(1.0, n);
+    EXPECT_EQ(z, zExact) << "n = " << n;
+    EXPECT_EQ(r.error, 0.0) << "n = " << n;
+  }
+}
+
+// The generator reproduces lcp_exp_murty2.dat (n = 6) exactly.
+TEST(LcpMurty, GeneratorMatchesTheCollectionFile) {
+  const Problem p = readLcpFile(dataPath("lcp_exp_murty2.dat"));
+  MatrixXd M;
+  VectorXd q;
+  murty(6, M, q);
+  EXPECT_EQ(p.M, M);
+  EXPECT_EQ(p.q, q);
+}
+
+// =============================================================================================
+// Limits and failures
+
+// Murty n = 10 needs 1023 pivots: a cap of 100 stops after exactly 100 (and one below the count
+// for n = 6 stops too), reporting IterationLimit with the last iterate, which is no solution.
+TEST(LcpLimits, IterationLimitIsHonoured) {
+  MatrixXd M;
+  VectorXd q, z;
+  murty(10, M, q);
+  LemkeSolver solver(10);
+  Result r = solver.solve(M, q, z, 100);
+  EXPECT_EQ(r.status, Status::IterationLimit);
+  EXPECT_EQ(r.pivots, 100);
+  EXPECT_GT(r.error, 0.0);
+  murty(6, M, q);
+  r = solver.solve(M, q, z, 62);
+  EXPECT_EQ(r.status, Status::IterationLimit);
+  EXPECT_EQ(r.pivots, 62);
+  r = solver.solve(M, q, z, 0);
+  EXPECT_EQ(r.status, Status::IterationLimit);
+  EXPECT_EQ(r.pivots, 0);
+  // the default cap, max(1000, 50 n), is enough for n = 6 (63 pivots)
+  r = solver.solve(M, q, z);
+  EXPECT_EQ(r.status, Status::Solved);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(6), 1000);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(100), 5000);
+}
+
+// NaN or infinite data: NumericalFailure, z = 0, NaN error; never a "solution".
+TEST(LcpLimits, NonFiniteDataIsANumericalFailure) {
+  const Problem p = readLcpFile(dataPath("lcp_deudeu.dat"));
+  LemkeSolver solver(2);
+  VectorXd z(2);
+  for (int k = 0; k < 4; ++k) {
+    MatrixXd M = p.M;
+    VectorXd q = p.q;
+    if (k == 0) M(1, 0) = std::numeric_limits<double>::quiet_NaN();
+    if (k == 1) q(1) = std::numeric_limits<double>::quiet_NaN();
+    if (k == 2) M(0, 0) = std::numeric_limits<double>::infinity();
+    if (k == 3) q(0) = -std::numeric_limits<double>::infinity();
+    const Result r = solver.solve(M, q, z);
+    EXPECT_EQ(r.status, Status::NumericalFailure) << "case " << k;
+    EXPECT_EQ(r.pivots, 0);
+    EXPECT_TRUE(std::isnan(r.error));
+    EXPECT_EQ(z, VectorXd::Zero(2));
+  }
+}
+
+// q >= 0: z = 0 with 0 pivots and error exactly 0 (also q = 0 and the empty problem).
+TEST(LcpLimits, NonNegativeQIsTrivial) {
+  MatrixXd M(3, 3);
+  M << 1, -2, 3, 4, -5, 6, 7, 8, -9;  // any M
+  VectorXd q(3);
+  q << 0.5, 0.0, 2.0;
+  VectorXd z = VectorXd::Constant(3, 7.0);
+  LemkeSolver solver;
+  Result r = solver.solve(M, q, z);
+  EXPECT_EQ(r.status, Status::Solved);
+  EXPECT_EQ(r.pivots, 0);
+  EXPECT_EQ(r.error, 0.0);
+  EXPECT_EQ(z, VectorXd::Zero(3));
+  r = solver.solve(M, VectorXd::Zero(3), z);
+  EXPECT_EQ(r.status, Status::Solved);
+  EXPECT_EQ(r.pivots, 0);
+  VectorXd z0;
+  r = solver.solve(MatrixXd(0, 0), VectorXd(0), z0);
+  EXPECT_EQ(r.status, Status::Solved);
+  EXPECT_EQ(z0.size(), 0);
+}
+
+// Sizes: z is resized when it has the wrong size; a view must have the right size; M and q must
+// agree (std::invalid_argument, a programming error).
+TEST(LcpLimits, SizesAreChecked) {
+  const Problem p = readLcpFile(dataPath("lcp_deudeu.dat"));
+  LemkeSolver solver;
+  VectorXd z(5);
+  EXPECT_EQ(solver.solve(p.M, p.q, z).status, Status::Solved);
+  EXPECT_EQ(z.size(), 2);
+  VectorXd big = VectorXd::Constant(4, -1.0);
+  EXPECT_EQ(solver.solve(p.M, p.q, big.segment(1, 2)).status, Status::Solved);
+  EXPECT_EQ(big(0), -1.0);
+  EXPECT_EQ(big(3), -1.0);
+  EXPECT_NEAR(big(1), 4.0 / 3.0, 1e-14);
+  EXPECT_THROW(solver.solve(p.M, p.q, big.segment(0, 3)), std::invalid_argument);
+  EXPECT_THROW(solver.solve(p.M, VectorXd::Zero(3), z), std::invalid_argument);
+  EXPECT_THROW(lcpError(p.M, p.q, VectorXd::Zero(3)), std::invalid_argument);
+  EXPECT_STREQ(statusName(Status::Solved), "Solved");
+  EXPECT_STREQ(statusName(Status::RayTermination), "RayTermination");
+  EXPECT_STREQ(statusName(Status::IterationLimit), "IterationLimit");
+  EXPECT_STREQ(statusName(Status::NumericalFailure), "NumericalFailure");
+}
+
+// =============================================================================================
+// Random problems against brute-force enumeration (fixed seed)
+
+// P-matrices (unique solution for every q): 25 per size n = 1..10 and kind, 750 problems:
+//  - symmetric positive definite A A' + I (A n x n uniform in [-1, 1]),
+//  - nonsymmetric strictly row diagonally dominant with positive diagonal,
+//  - small-integer diagonally dominant M with integer q in [-3, 3] (exact ties: degenerate).
+// For the first two, q = w0 - M z0 with complementary z0, w0 >= 0 and, for about a quarter of
+// the indices, z0_i = w0_i = 0 (degenerate: the lexicographic rule matters).
+// Tolerance: z to 1e-9 relative to max(1, |z|_inf) (the matrices have condition numbers below
+// about 1e3 here, so the rounding error is below 1e-12; 1e-9 leaves room and still catches any
+// wrong basis, whose z differs in O(1)); the enumeration accepts violations below 1e-9.
+TEST(LcpRandom, PMatricesMatchEnumeration) {
+  Rng rng(20240611);
+  LemkeSolver solver(10);
+  int problems = 0, degenerateTies = 0;
+  double worstError = 0.0, worstDiff = 0.0;
+  for (int n = 1; n <= 10; ++n) {
+    for (int kind = 0; kind < 3; ++kind) {
+      for (int rep = 0; rep < 25; ++rep) {
+        MatrixXd M(n, n);
+        VectorXd q(n);
+        if (kind == 0) {
+          MatrixXd A(n, n);
+          for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) A(i, j) = rng.uniform(-1.0, 1.0);
+          M = A * A.transpose() + MatrixXd::Identity(n, n);
+        } else if (kind == 1) {
+          for (int i = 0; i < n; ++i) {
+            double off = 0.0;
+            for (int j = 0; j < n; ++j)
+              if (j != i) off += std::abs(M(i, j) = rng.uniform(-1.0, 1.0));
+            M(i, i) = off + rng.uniform(0.1, 1.0);
+          }
+        } else {
+          for (int i = 0; i < n; ++i) {
+            int off = 0;
+            for (int j = 0; j < n; ++j)
+              if (j != i) {
+                const int v = rng.integer(-1, 1);
+                M(i, j) = v;
+                off += std::abs(v);
+              }
+            M(i, i) = off + rng.integer(1, 2);
+            q(i) = rng.integer(-3, 3);
+          }
+        }
+        if (kind < 2) {
+          VectorXd z0 = VectorXd::Zero(n), w0 = VectorXd::Zero(n);
+          for (int i = 0; i < n; ++i) {
+            const int pick = rng.integer(0, 3);  // 0, 1: z0_i > 0; 2: w0_i > 0; 3: both zero
+            if (pick <= 1) z0(i) = rng.uniform(0.1, 2.0);
+            else if (pick == 2) w0(i) = rng.uniform(0.1, 2.0);
+          }
+          q = w0 - M * z0;
+        }
+        const Enumeration e = enumerate(M, q, 1e-9);
+        ASSERT_GE(e.solutions, 1) << "n " << n << " kind " << kind << " rep " << rep;
+        if (e.solutions > 1) ++degenerateTies;
+        VectorXd z;
+        const Result r = solver.solve(M, q, z);
+        ASSERT_EQ(r.status, Status::Solved) << "n " << n << " kind " << kind << " rep " << rep;
+        const double diff = (z - e.z).lpNorm<Eigen::Infinity>() / std::max(1.0, e.z.lpNorm<Eigen::Infinity>());
+        EXPECT_LE(diff, 1e-9) << "n " << n << " kind " << kind << " rep " << rep;
+        EXPECT_LE(r.error, 1e-12) << "n " << n << " kind " << kind << " rep " << rep;
+        worstError = std::max(worstError, r.error);
+        worstDiff = std::max(worstDiff, diff);
+        ++problems;
+      }
+    }
+  }
+  EXPECT_EQ(problems, 750);
+  EXPECT_GT(degenerateTies, 50);  // the degenerate construction did produce degenerate problems
+  std::printf("  P-matrices: %d problems (%d degenerate), worst error %.3g, worst |z - z_enum| %.3g\n", problems,
+              degenerateTies, worstError, worstDiff);
+}
+
+// Positive semidefinite M = B B' (B n x k, k < n: singular), and the nonsymmetric PSD
+// B B' + (C - C'), n = 1..10, 25 of each per size (500 problems); q = w0 - M z0 with
+// complementary z0, w0 >= 0 (some indices with both zero), so a solution exists and Lemke must
+// find one (PSD matrices are copositive-plus). z need not be unique; what is unique
+// (Cottle-Pang-Stone, Thm 3.1.7): w = M z + q for symmetric PSD M, and q'z for every PSD M.
+// These are compared with the enumeration's solution to 1e-9 relative to max(1, the values'
+// scale) (rounding in rank-deficient bases stays near 1e-13; a wrong solution differs in O(1));
+// complementarity through the error, <= 1e-10.
+TEST(LcpRandom, SemidefiniteMatricesMatchEnumeration) {
+  Rng rng(777);
+  LemkeSolver solver(10);
+  int problems = 0;
+  double worstError = 0.0;
+  for (int n = 1; n <= 10; ++n) {
+    for (int kind = 0; kind < 2; ++kind) {
+      for (int rep = 0; rep < 25; ++rep) {
+        const int k = n == 1 ? 0 : rng.integer(1, n - 1);
+        MatrixXd B(n, k);
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < k; ++j) B(i, j) = rng.uniform(-1.0, 1.0);
+        MatrixXd M = B * B.transpose();
+        if (kind == 1) {
+          MatrixXd C(n, n);
+          for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) C(i, j) = rng.uniform(-1.0, 1.0);
+          M += C - C.transpose();
+        }
+        VectorXd z0 = VectorXd::Zero(n), w0 = VectorXd::Zero(n);
+        for (int i = 0; i < n; ++i) {
+          const int pick = rng.integer(0, 3);
+          if (pick <= 1) z0(i) = rng.uniform(0.1, 2.0);
+          else if (pick == 2) w0(i) = rng.uniform(0.1, 2.0);
+        }
+        const VectorXd q = w0 - M * z0;
+        const Enumeration e = enumerate(M, q, 1e-9);
+        ASSERT_GE(e.solutions, 1) << "n " << n << " kind " << kind << " rep " << rep;
+        VectorXd z;
+        const Result r = solver.solve(M, q, z);
+        ASSERT_EQ(r.status, Status::Solved) << "n " << n << " kind " << kind << " rep " << rep;
+        EXPECT_LE(r.error, 1e-10) << "n " << n << " kind " << kind << " rep " << rep;
+        EXPECT_GE(z.minCoeff(), 0.0);
+        const VectorXd w = M * z + q, wE = M * e.z + q;
+        if (kind == 0) {
+          const double scale = std::max(1.0, wE.lpNorm<Eigen::Infinity>());
+          EXPECT_LE((w - wE).lpNorm<Eigen::Infinity>(), 1e-9 * scale) << "n " << n << " rep " << rep;
+        }
+        const double qz = q.dot(z), qzE = q.dot(e.z);
+        EXPECT_LE(std::abs(qz - qzE), 1e-9 * std::max(1.0, std::abs(qzE))) << "n " << n << " kind " << kind;
+        worstError = std::max(worstError, r.error);
+        ++problems;
+      }
+    }
+  }
+  EXPECT_EQ(problems, 500);
+  std::printf("  PSD: %d problems, worst error %.3g\n", problems, worstError);
+}
+
+// =============================================================================================
+// Planar friction contact through the LCP form
+
+namespace {
+
+struct ContactSolution {
+  Result result;
+  VectorXd z, r, u;
+};
+
+ContactSolution solveFriction(const FrictionProblem& p) {
+  MatrixXd M;
+  VectorXd q;
+  frictionToLcp(p, M, q);
+  ContactSolution s;
+  LemkeSolver solver;
+  s.result = solver.solve(M, q, s.z);
+  lcpToForces(p, s.z, s.r);
+  s.u = p.W * s.r + p.q;
+  return s;
+}
+
+// The contact laws in terms of (u, r) with absolute tolerance tol: 0 <= u_N _|_ r_N >= 0,
+// |r_T| <= mu r_N, u_T = 0 when sticking, r_T = -mu r_N sign(u_T) when sliding.
+void expectCoulomb(const FrictionProblem& p, const VectorXd& r, const VectorXd& u, double tol) {
+  for (int i = 0; i < p.contacts(); ++i) {
+    const double rN = r(2 * i), rT = r(2 * i + 1), uN = u(2 * i), uT = u(2 * i + 1), mu = p.mu(i);
+    EXPECT_GE(rN, -tol) << "contact " << i;
+    EXPECT_GE(uN, -tol) << "contact " << i;
+    EXPECT_LE(std::min(std::abs(rN), std::abs(uN)), tol) << "contact " << i;
+    EXPECT_LE(std::abs(rT), mu * rN + tol) << "contact " << i;
+    if (uT > tol) EXPECT_NEAR(rT, -mu * rN, tol) << "contact " << i;
+    if (uT < -tol) EXPECT_NEAR(rT, mu * rN, tol) << "contact " << i;
+    if (std::abs(rT) < mu * rN - tol) EXPECT_NEAR(uT, 0.0, tol) << "contact " << i;
+  }
+}
+
+}  // namespace
+
+// One contact with W = I, q = (-1, v): r_N = 1; sliding (r_T = -mu sign(v), u_T = v - r_T... )
+// for |v| > mu, sticking (r_T = -v, u_T = 0) for |v| < mu. Exact data: 1e-14.
+TEST(LcpFrictionContact, SingleContactSlidesAndSticks) {
+  FrictionProblem p;
+  p.W = MatrixXd::Identity(2, 2);
+  p.mu = VectorXd::Constant(1, 0.3);
+  for (double v : {2.0, -2.0, 0.1, -0.25, 0.0}) {
+    p.q = Eigen::Vector2d(-1.0, v);
+    const ContactSolution s = solveFriction(p);
+    ASSERT_EQ(s.result.status, Status::Solved) << "v = " << v;
+    EXPECT_NEAR(s.r(0), 1.0, 1e-14);
+    const double rT = std::abs(v) > 0.3 ? (v > 0 ? -0.3 : 0.3) : -v;
+    EXPECT_NEAR(s.r(1), rT, 1e-14) << "v = " << v;
+    expectCoulomb(p, s.r, s.u, 1e-14);
+  }
+}
+
+// The slider-crank problems: forces against the README's reference values, listed to 5 decimal
+// places, so the tolerance is half a unit in the fifth decimal, 5e-6 (+1e-12 for our rounding).
+// The LCP error is at rounding level on 00000 (<= 1e-12); 00001 has a rank-deficient W (its two
+// tangent columns are nearly equal), where the README accepts Siconos' 1e-5: we require that
+// (seen: about 3e-16). The contact laws hold to 1e-12 of the data scale (|q| ~ 10).
+TEST(LcpFrictionContact, SliderCrankMatchesReferenceForces) {
+  struct Ref {
+    const char* file;
+    double r[4];
+    double errorTol;
+  };
+  const Ref refs[] = {{"fc2d/FC2D_SliderCrankLagrangian00000.dat", {0.05578, 0.00056, 0.05522, 0.00055}, 1e-12},
+                      {"fc2d/FC2D_SliderCrankLagrangian00001.dat", {0.04453, 0.00045, 0.04408, 0.00044}, 1e-5}};
+  for (const Ref& ref : refs) {
+    const FrictionProblem p = readFc2dFile(dataPath(ref.file));
+    ASSERT_EQ(p.contacts(), 2);
+    const ContactSolution s = solveFriction(p);
+    ASSERT_EQ(s.result.status, Status::Solved) << ref.file;
+    EXPECT_LE(s.result.error, ref.errorTol) << ref.file;
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(s.r(k), ref.r[k], 5e-6 + 1e-12) << ref.file << " r[" << k << "]";
+    expectCoulomb(p, s.r, s.u, 1e-12 * p.q.lpNorm<Eigen::Infinity>());
+    std::printf("  %-45s pivots %d  error %.3g  r = %.6g %.6g %.6g %.6g\n", ref.file, s.result.pivots, s.result.error,
+                s.r(0), s.r(1), s.r(2), s.r(3));
+  }
+}
+
+// FrictionContactProblem00394: q is rounding noise (|q| < 2e-15): all forces zero, to 1e-12
+// (W ~ 0.4, so forces of the size of q / W would be ~1e-15).
+TEST(LcpFrictionContact, Problem00394HasZeroForces) {
+  const FrictionProblem p = readFc2dFile(dataPath("fc2d/FrictionContactProblem00394.dat"));
+  ASSERT_EQ(p.contacts(), 6);
+  const ContactSolution s = solveFriction(p);
+  ASSERT_EQ(s.result.status, Status::Solved);
+  EXPECT_LE(s.result.error, 1e-12);
+  EXPECT_LE(s.r.lpNorm<Eigen::Infinity>(), 1e-12);
+  expectCoulomb(p, s.r, s.u, 1e-12);
+  std::printf("  00394: pivots %d  error %.3g  |r|_inf %.3g\n", s.result.pivots, s.result.error,
+              s.r.lpNorm<Eigen::Infinity>());
+}
+
+// FrictionContactProblem00374: the README lists "all zero", but the file does not allow that:
+// contacts 12..21 (1-based) have q_N = -36.7875 with W rows and columns that are diagonal
+// (decoupled from everything else), so u_N = W_NN r_N + q_N >= 0 forces r_N = 36.7875 / W_NN
+// (147..178) there; q_T = 0 gives r_T = 0. All other contacts have q_N >= -2e-15 and zero
+// forces. Checked against this closed form to 1e-12 relative to the largest force (rounding),
+// and against the contact laws directly.
+TEST(LcpFrictionContact, Problem00374MatchesTheDecoupledClosedForm) {
+  const FrictionProblem p = readFc2dFile(dataPath("fc2d/FrictionContactProblem00374.dat"));
+  ASSERT_EQ(p.contacts(), 28);
+  VectorXd rExact = VectorXd::Zero(56);
+  int loaded = 0;
+  for (int i = 0; i < 28; ++i) {
+    if (p.q(2 * i) < -1.0) {
+      // the closed form needs the contact to be decoupled: check that
+      for (int j = 0; j < 56; ++j) {
+        if (j == 2 * i || j == 2 * i + 1) continue;
+        ASSERT_EQ(p.W(2 * i, j), 0.0);
+        ASSERT_EQ(p.W(2 * i + 1, j), 0.0);
+        ASSERT_EQ(p.W(j, 2 * i), 0.0);
+        ASSERT_EQ(p.W(j, 2 * i + 1), 0.0);
+      }
+      ASSERT_EQ(p.W(2 * i, 2 * i + 1), 0.0);
+      ASSERT_EQ(p.W(2 * i + 1, 2 * i), 0.0);
+      ASSERT_EQ(p.q(2 * i + 1), 0.0);
+      rExact(2 * i) = -p.q(2 * i) / p.W(2 * i, 2 * i);
+      ++loaded;
+    }
+  }
+  EXPECT_EQ(loaded, 10);
+  const ContactSolution s = solveFriction(p);
+  ASSERT_EQ(s.result.status, Status::Solved);
+  EXPECT_LE(s.result.error, 1e-12);
+  EXPECT_LE((s.r - rExact).lpNorm<Eigen::Infinity>(), 1e-12 * rExact.lpNorm<Eigen::Infinity>());
+  expectCoulomb(p, s.r, s.u, 1e-12 * p.q.lpNorm<Eigen::Infinity>());
+  std::printf("  00374: pivots %d  error %.3g  max |r - r_exact| %.3g (max r %.6g)\n", s.result.pivots,
+              s.result.error, (s.r - rExact).lpNorm<Eigen::Infinity>(), rExact.maxCoeff());
+}
+
+// =============================================================================================
+// Determinism and allocation
+
+// Identical inputs give bit-identical outputs: the same solver object twice, after other solves
+// in between (no state leaks), and a fresh solver.
+TEST(LcpDeterminism, RepeatedSolvesAreBitIdentical) {
+  for (const char* f : {"lcp_tobenna.dat", "lcp_mmc.dat", "lcp_enum_fails.dat"}) {
+    const Problem p = readLcpFile(dataPath(f));
+    const Problem other = readLcpFile(dataPath("lcp_CPS_4.dat"));
+    LemkeSolver a(40);
+    VectorXd z1, z2, z3, zo;
+    const Result r1 = a.solve(p.M, p.q, z1);
+    a.solve(other.M, other.q, zo);
+    const Result r2 = a.solve(p.M, p.q, z2);
+    LemkeSolver b;
+    const Result r3 = b.solve(p.M, p.q, z3);
+    ASSERT_EQ(z1.size(), z2.size());
+    EXPECT_EQ(std::memcmp(z1.data(), z2.data(), sizeof(double) * static_cast<std::size_t>(z1.size())), 0) << f;
+    EXPECT_EQ(std::memcmp(z1.data(), z3.data(), sizeof(double) * static_cast<std::size_t>(z1.size())), 0) << f;
+    EXPECT_EQ(r1.pivots, r2.pivots);
+    EXPECT_EQ(r1.pivots, r3.pivots);
+    EXPECT_EQ(std::memcmp(&r1.error, &r2.error, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&r1.error, &r3.error, sizeof(double)), 0);
+  }
+}
+
+// A solver sized once allocates nothing per solve for problems up to its capacity (solution
+// vectors of the right size passed in): counted through malloc/calloc/realloc while solving the
+// collection's problems of size <= 40 (including ray terminations, an iteration limit and the
+// periodic refactorizations of tobenna's 126 pivots). The counter is shown to work: a vector
+// allocated in the counted region and a problem beyond the capacity are both counted.
+TEST(LcpAllocation, NoHeapAllocationPerSolve) {
+#ifndef LCP_TEST_COUNTS_ALLOCATIONS
+  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer";
+#else
+  std::vector<Problem> problems;
+  for (const auto& c : collection()) problems.push_back(readLcpFile(dataPath(c.file)));
+  MatrixXd murtyM;
+  VectorXd murtyQ;
+  murty(10, murtyM, murtyQ);
+  std::vector<VectorXd> zs;
+  for (const auto& p : problems) zs.emplace_back(p.q.size());
+  VectorXd zMurty(10);
+  std::vector<Result> results(problems.size() + 1);
+  LemkeSolver solver(40);
+
+  gAllocations = 0;
+  gCountAllocations = true;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t i = 0; i < problems.size(); ++i) results[i] = solver.solve(problems[i].M, problems[i].q, zs[i]);
+    results.back() = solver.solve(murtyM, murtyQ, zMurty, 100);
+  }
+  gCountAllocations = false;
+  const long duringSolves = gAllocations.load();
+
+  gAllocations = 0;
+  gCountAllocations = true;
+  {
+    std::vector<double> probe(100);
+    probe[0] = 1.0;
+    EXPECT_EQ(probe[0], 1.0);
+  }
+  gCountAllocations = false;
+  const long probeCount = gAllocations.load();
+
+  MatrixXd bigM = MatrixXd::Identity(41, 41);
+  VectorXd bigQ = VectorXd::Constant(41, -1.0), bigZ(41);
+  gAllocations = 0;
+  gCountAllocations = true;
+  const Result big = solver.solve(bigM, bigQ, bigZ);
+  gCountAllocations = false;
+  const long growCount = gAllocations.load();
+
+  EXPECT_EQ(duringSolves, 0);
+  EXPECT_GE(probeCount, 1);
+  EXPECT_GE(growCount, 1);  // the work arrays grow to 41 once
+  EXPECT_EQ(big.status, Status::Solved);
+  EXPECT_EQ(results.back().status, Status::IterationLimit);
+  int solved = 0;
+  for (std::size_t i = 0; i + 1 < results.size(); ++i) solved += results[i].status == Status::Solved;
+  EXPECT_EQ(solved, 15);
+#endif
+}
+
+// =============================================================================================
+// Readers
+
+namespace {
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "lcp_test_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string readError(const std::string& path, bool fc2d = false) {
+  try {
+    if (fc2d) readFc2dFile(path);
+    else readLcpFile(path);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+// The format: column-major matrix (each printed line is a column), q, then the comment.
+TEST(LcpReader, ReadsColumnMajorMatrixQAndComment) {
+  const Problem p = readLcpFile(dataPath("lcp_CPS_2.dat"));
+  ASSERT_EQ(p.M.rows(), 3);
+  MatrixXd M(3, 3);
+  M << 0, -1, 2, 2, 0, -2, -1, 1, 0;  // the file's lines "0 2 -1", "-1 0 1", "2 -2 0" are columns
+  EXPECT_EQ(p.M, M);
+  EXPECT_EQ(p.q, Eigen::Vector3d(-3, 6, -1));
+  EXPECT_EQ(p.comment, "Example 4.4.7 CPS 2009");
+  const FrictionProblem f = readFc2dFile(dataPath("fc2d/FC2D_SliderCrankLagrangian00000.dat"));
+  EXPECT_EQ(f.W.rows(), 4);
+  EXPECT_EQ(f.mu, Eigen::Vector2d(0.01, 0.01));
+  EXPECT_DOUBLE_EQ(f.W(1, 0), -4.642665883420582986218506e+02);
+  EXPECT_DOUBLE_EQ(f.W(0, 1), -4.642662921766745967033785e+02);
+}
+
+// Every error names the file and what is wrong.
+TEST(LcpReader, ErrorsNameTheFileAndTheProblem) {
+  const std::string missing = ::testing::TempDir() + "no_such_lcp_file.dat";
+  EXPECT_NE(readError(missing).find(missing), std::string::npos);
+  EXPECT_NE(readError(missing).find("cannot open"), std::string::npos);
+
+  struct Bad {
+    const char* name;
+    const char* text;
+    const char* message;
+    bool fc2d;
+  };
+  const Bad bad[] = {
+      {"empty.dat", "", "expected the problem size n (an integer), found the end of the file", false},
+      {"size.dat", "x\n", "expected the problem size n (an integer), found 'x'", false},
+      {"zero.dat", "0\n0\n0\n0\n0 0\n", "problem size 0 is out of range", false},
+      {"sparse.dat", "2\n1\n2\n2\n2 2\n", "storage type 1 of M is not supported", false},
+      {"rows.dat", "2\n0\n3\n2\n2 2\n", "the number of rows of M is 3, expected 2", false},
+      {"short.dat", "2\n0\n2\n2\n2 2\n1 0\n0 1\n-1\n", "expected entry 2 of the 2 of q, found the end of the file", false},
+      {"word.dat", "2\n0\n2\n2\n2 2\n1 0\nzero 1\n-1 -1\n", "expected entry 3 of the 4 of M (a number), found 'zero'", false},
+      {"dim.dat", "3\n1\n", "dimension 3 is not supported", true},
+      {"mu.dat", "2\n1\n0\n2\n2\n2 2\n1 0 0 1\n-1 0\n-0.5\n", "friction coefficient 1 is -0.5", true},
+  };
+  for (const Bad& b : bad) {
+    const std::string path = writeTemp(b.name, b.text);
+    const std::string msg = readError(path, b.fc2d);
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    EXPECT_NE(msg.find(b.message), std::string::npos) << b.name << ": " << msg;
+  }
+}
+
+// =============================================================================================
+// The command-line tool (build/chaindrive-lcp next to build/tests/cpp/chaindrive_tests)
+
+namespace {
+struct Run {
+  int code;
+  std::string out;
+};
+
+std::filesystem::path cliPath() {
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  return self.parent_path().parent_path().parent_path() / "chaindrive-lcp";
+}
+
+Run runCli(const std::string& args) {
+  const std::string cmd = "'" + cliPath().string() + "' " + args + " 2>&1";
+  Run r{-1, ""};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[4096];
+  std::size_t got = 0;
+  while ((got = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, got);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+}  // namespace
+
+// Exit codes 0 (solved), 1 (ray, limit), 2 (bad arguments, unreadable file naming it); output:
+// status, pivots, error, z at full precision (17 significant digits).
+TEST(LcpCli, PrintsTheResultAndUsesTheExitCodes) {
+  if (!std::filesystem::exists(cliPath())) GTEST_SKIP() << "chaindrive-lcp not found at " << cliPath();
+  Run r = runCli("'" + dataPath("lcp_deudeu.dat") + "'");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("status: Solved\npivots: 2\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n1.3333333333333333\n2.3333333333333335\n"), std::string::npos) << r.out;
+
+  r = runCli("'" + dataPath("lcp_CPS_3.dat") + "'");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("status: RayTermination"), std::string::npos) << r.out;
+
+  r = runCli("'" + dataPath("lcp_exp_murty2.dat") + "' --max-pivots 10");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("status: IterationLimit\npivots: 10\n"), std::string::npos) << r.out;
+
+  r = runCli("--fc2d '" + dataPath("fc2d/FC2D_SliderCrankLagrangian00000.dat") + "'");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("r (r_N r_T per contact):\n0.0557794"), std::string::npos) << r.out;
+
+  r = runCli("/nonexistent/problem.dat");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("/nonexistent/problem.dat"), std::string::npos) << r.out;
+
+  r = runCli("'" + dataPath("lcp_deudeu.dat") + "' --max-pivots many");
+  EXPECT_EQ(r.code, 2) << r.out;
+  r = runCli("");
+  EXPECT_EQ(r.code, 2) << r.out;
+  r = runCli("'" + dataPath("lcp_deudeu.dat") + "' --frobnicate");
+  EXPECT_EQ(r.code, 2) << r.out;
+}
