@@ -28,7 +28,7 @@ import tempfile
 
 import numpy as np
 
-from . import paths, plots, runs, signals
+from . import paths, plots, runs, tables
 
 # integrator, option, setting, halved setting
 CONFIGS = [
@@ -60,6 +60,20 @@ def runs_with_timeout(out, rpm, duration, inputs, integrator, kw, timeout):
         cmd += [f"--{k}", repr(v)]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     return p.returncode, p.stdout + p.stderr, runs.parse_summary(p.stdout)
+
+
+def perturbed_inputs(path, out, rel):
+    """The input table with the crankshaft speed scaled by (1 + rel)."""
+    lines = open(path).read().splitlines()
+    with open(out, "w") as f:
+        for line in lines:
+            if line.startswith("#") or line.startswith("time"):
+                f.write(line + "\n")
+                continue
+            cells = line.split(",")
+            cells[1] = repr(float(cells[1]) * (1.0 + rel))
+            f.write(",".join(cells) + "\n")
+    return out
 
 
 def measures(d, rpm):
@@ -94,17 +108,17 @@ def main(argv=None):
     emit()
     emit(f"machine: {runs.machine()}")
     emit(f"command: python -m harness.benchmark {' '.join(sys.argv[1:]) if argv is None else ' '.join(argv)}")
-    emit(f"scene: default drive, {args.cycles:g} engine cycles, crankshaft order-2 vibration and camshaft "
-         "torques of harness/signals.py; CPU time of the integration (start-state solve excluded), median of "
-         f"{args.repeats} runs")
+    emit(f"scene: default drive, {args.cycles:g} engine cycles, open-loop inputs from the crankshaft-speed and "
+         "camshaft-torque tables of harness/data (synthesized); CPU time of the integration (start-state solve "
+         f"excluded), median of {args.repeats} runs")
     emit()
     best = None
     with tempfile.TemporaryDirectory() as tmp:
         for rpm in args.rpm:
             duration = args.cycles * 120.0 / rpm
-            inputs = signals.write_inputs_csv(pathlib.Path(tmp) / f"in_{rpm:g}.csv", rpm, duration)
+            inputs = tables.write_inputs_csv(pathlib.Path(tmp) / f"in_{rpm:g}.csv", rpm, duration)
             # divergence of two runs whose inputs differ by 1e-9 (same integrator and step)
-            inputs_b = signals.write_inputs_csv(pathlib.Path(tmp) / f"inb_{rpm:g}.csv", rpm * (1 + 1e-9), duration)
+            inputs_b = perturbed_inputs(inputs, pathlib.Path(tmp) / f"inb_{rpm:g}.csv", 1e-9)
             sa, da = one_run(tmp, rpm, duration, inputs, "fixed-verlet", "step", 1.5e-6, args.timeout)
             sb, db = one_run(tmp, rpm, duration, inputs_b, "fixed-verlet", "step", 1.5e-6, args.timeout, tag="_perturbed")
             emit(f"## {rpm:g} rpm ({duration * 1e3:.1f} ms simulated)")

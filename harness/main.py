@@ -1,25 +1,131 @@
-"""The main job: runs the default drive at a mean engine speed with crankshaft vibration and
-camshaft load torques, writes the outputs, the plots, and prints a summary.
+"""The main job: a scene run through ChainDrive.fmu with the measured-torque tables.
 
-    python -m harness.main [--rpm 3000] [--cycles 4] [--integrator fixed-verlet] [--out results/]
+Runs a drive (default: the FMU's default drive) at a mean engine speed for a number of engine
+cycles, driven by the camshaft-torque and crankshaft-speed tables of harness/data (synthesized,
+see harness/data/README.md), writes all outputs as CSV, makes the plots engineers read and prints
+a summary.
+
+Two couplings:
+  closed (default)  the way an engine simulator couples: a master loop (fmpy FMU2Slave) looks the
+                    camshaft torques up at the FMU's own camshaft angles and the crankshaft speed
+                    at its crankshaft angle, at every communication step;
+  open              the tables turned into time series at the mean speed and passed to
+                    fmpy.simulate_fmu as input.
+
+    python -m harness.main [--rpm 3000] [--cycles 4] [--coupling closed|open] [--step 1e-4]
+                           [--method fixed-verlet] [--solver-step 2.5e-6] [--drive FILE] [--out results]
 """
 import argparse
 import math
 import pathlib
+import sys
+import time
 
 import numpy as np
 
-from . import paths, plots, runs, signals
+from . import fmu, paths, plots, tables
+
+class Progress:
+    """A text progress bar on stderr."""
+
+    def __init__(self, total, label):
+        self.total, self.label, self.last = total, label, -1
+        self.t0 = time.time()
+
+    def update(self, t):
+        pct = int(100 * t / self.total + 1e-9)
+        tty = sys.stderr.isatty()
+        if pct != self.last and (tty or pct % 10 == 0):
+            self.last = pct
+            bar = "#" * (pct // 4) + "." * (25 - pct // 4)
+            sys.stderr.write(f"{chr(13) if tty else ''}{self.label} [{bar}] {pct:3d} %  t = {t * 1e3:7.2f} ms  "
+                             f"({time.time() - self.t0:5.1f} s){'' if tty else chr(10)}")
+            sys.stderr.flush()
+        return True
+
+    def done(self):
+        if sys.stderr.isatty():
+            sys.stderr.write("\n")
+
+
+def parameters_of(args):
+    p = {"solver.method": args.method, "solver.step": args.solver_step, "solver.tolerance": args.rtol}
+    if args.drive:
+        p["driveFile"] = str(pathlib.Path(args.drive).resolve())
+    return p
+
+
+def run_closed(args, duration, torque, speed):
+    """Master loop: inputs looked up at the FMU's own angles before every step."""
+    s = fmu.Slave("chaindrive", parameters=parameters_of(args))
+    n = int(round(duration / args.step))
+    w0 = speed_at(speed, 0.0)
+    s.initialize(inputs={"crankshaft.w": w0,
+                         "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", 0.0)),
+                         "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", 0.0))})
+    names = s.outputs
+    rows = [[0.0] + [s.get(names)[k] for k in names] + [w0, np.nan, np.nan]]
+    prog = Progress(duration, "closed loop")
+    for k in range(n):
+        o = s.get(["crankshaft.phi", "camshaftIntake.phi", "camshaftExhaust.phi"])
+        crank_deg = math.degrees(o["crankshaft.phi"])
+        # camshafts turn at half the crankshaft speed; the tables are over crank angle
+        u = {"crankshaft.w": speed_at(speed, crank_deg),
+             "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", 2.0 * math.degrees(o["camshaftIntake.phi"]))),
+             "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", 2.0 * math.degrees(o["camshaftExhaust.phi"])))}
+        s.step(args.step, inputs=u, t=k * args.step)
+        v = s.get(names)
+        rows.append([(k + 1) * args.step] + [v[x] for x in names] + [u["crankshaft.w"], u["camshaftIntake.tau"],
+                                                                    u["camshaftExhaust.tau"]])
+        prog.update((k + 1) * args.step)
+    prog.done()
+    s.close()
+    cols = ["time"] + names + ["input.crankshaft.w", "input.camshaftIntake.tau", "input.camshaftExhaust.tau"]
+    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}
+
+
+def speed_at(speed, crank_deg):
+    col = "crankshaft.speed_rpm" if "crankshaft.speed_rpm" in speed.columns else "crankshaft.w"
+    v = float(tables.lookup(speed, col, crank_deg))
+    return v * 2.0 * math.pi / 60.0 if col.endswith("_rpm") else v
+
+
+def run_open(args, duration, torque, speed):
+    from fmpy import simulate_fmu
+    ts = tables.time_series(args.rpm, duration, min(2e-5, args.step), torque_table=torque, speed_table=speed)
+    names = ["crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau"]
+    arr = np.zeros(len(ts["time"]), dtype=[("time", float)] + [(n, float) for n in names])
+    arr["time"] = ts["time"]
+    for n in names:
+        arr[n] = ts[n]
+    prog = Progress(duration, "open loop")
+    res = simulate_fmu(str(fmu.fmu_path()), stop_time=duration, output_interval=args.step, input=arr,
+                       start_values=parameters_of(args), step_finished=lambda t, rec: prog.update(t))
+    prog.done()
+    out = {n: np.asarray(res[n], dtype=float) for n in res.dtype.names}
+    for n in names:
+        out["input." + n] = np.interp(out["time"], ts["time"], ts[n])
+    return out
+
+
+def write_csv(path, d):
+    cols = list(d)
+    with open(path, "w") as f:
+        f.write(",".join(cols) + "\n")
+        np.savetxt(f, np.column_stack([d[c] for c in cols]), delimiter=",", fmt="%.10g")
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--drive", help="drive description (default: the embedded default drive)")
-    ap.add_argument("--rpm", type=float, default=3000.0, help="mean crankshaft speed [rpm]")
+    ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
+    ap.add_argument("--rpm", type=float, default=3000.0, help="mean engine speed [rpm], 1000-6000 (tables)")
     ap.add_argument("--cycles", type=float, default=4.0, help="engine cycles (720 deg crank); the first is discarded")
-    ap.add_argument("--integrator", default="fixed-verlet")
-    ap.add_argument("--step", type=float, default=2e-6, help="fixed step [s]")
-    ap.add_argument("--rtol", type=float, default=1e-5, help="relative tolerance of adaptive integrators")
+    ap.add_argument("--coupling", choices=("closed", "open"), default="closed")
+    ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/data)")
+    ap.add_argument("--step", type=float, default=1e-4, help="communication step [s]")
+    ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")
+    ap.add_argument("--solver-step", type=float, default=2.5e-6, help="FMU parameter solver.step [s]")
+    ap.add_argument("--rtol", type=float, default=1e-5, help="FMU parameter solver.tolerance")
     ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
     args = ap.parse_args(argv)
 
@@ -27,41 +133,43 @@ def main(argv=None):
     out.mkdir(parents=True, exist_ok=True)
     cycle = 2.0 * 60.0 / args.rpm
     duration = args.cycles * cycle
-    inputs = signals.write_inputs_csv(out / "inputs.csv", args.rpm, duration)
+    torque = tables.camshaft_torque(args.rpm, args.tables)
+    speed = tables.crankshaft_speed(args.rpm, args.tables)
+    print(f"ChainDrive.fmu: {args.drive or 'default drive'}, {args.rpm:g} rpm, {args.cycles:g} engine cycles "
+          f"({duration * 1e3:.1f} ms), {args.coupling}-loop coupling, communication step {args.step * 1e6:g} us, "
+          f"{args.method}")
+    print(f"tables: {torque.path} ({torque.provenance})")
+    cpu0 = time.process_time()
+    d = run_closed(args, duration, torque, speed) if args.coupling == "closed" else run_open(args, duration, torque, speed)
+    cpu = time.process_time() - cpu0
     csv = out / "outputs.csv"
-    print(f"running {args.drive or 'the default drive'} at {args.rpm:g} rpm for {args.cycles:g} engine cycles "
-          f"({duration * 1e3:.1f} ms) with {args.integrator} ...", flush=True)
-    code, text, summary = runs.run(csv, rpm=args.rpm, duration=duration, integrator=args.integrator, step=args.step,
-                                   rtol=args.rtol, inputs_csv=inputs, drive=args.drive, output_step=2e-5)
-    if code != 0:
-        print(text)
-        raise SystemExit(f"the run failed: {summary.get('failure', 'see above')}")
-    d = runs.read_csv(csv)
+    write_csv(csv, d)
+
     t0 = cycle  # discard the first engine cycle (start transient)
     sel = d["time"] >= t0 - 1e-12
-    title = f"default drive, {args.rpm:g} rpm, {args.integrator}"
+    title = f"{args.rpm:g} rpm, {args.coupling} loop, {args.method}"
     plots.drive_picture(out / "drive.png", args.drive)
     plots.time_histories(out / "time_histories.png", d, args.rpm, title)
     plots.spectra(out / "spectra.png", d, args.rpm, t0, title + " (after the first cycle)")
-    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0, drive=args.drive)
+    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0,
+                     drive=args.drive)
 
     F = d["tensioner.F"][sel]
     orders_F = plots.dominant_orders(d["time"][sel], F, args.rpm)
     orders_phi = plots.dominant_orders(d["time"][sel], d["tensionGuide.phi"][sel], args.rpm)
-    print("\nsummary (measured over engine cycles 2..%g)" % args.cycles)
-    print(f"  tensioner force: mean {F.mean():.1f} N, peak-to-peak {F.max() - F.min():.1f} N "
-          f"(min {F.min():.1f}, max {F.max():.1f})")
-    print(f"  tight span: mean {np.nanmean(d['chain.Ftight'][sel]):.1f} N, max {np.nanmax(d['chain.Ftight'][sel]):.1f} N;"
-          f" slack span: mean {np.nanmean(d['chain.Fslack'][sel]):.1f} N")
+    print(f"\nsummary (engine cycles 2..{args.cycles:g})")
+    print(f"  tensioner force: mean {F.mean():.1f} N, peak-to-peak {np.ptp(F):.1f} N (min {F.min():.1f}, max {F.max():.1f})")
+    print(f"  tight span: mean {np.nanmean(d['chain.Ftight'][sel]):.1f} N, max {np.nanmax(d['chain.Ftight'][sel]):.1f} N; "
+          f"slack span: mean {np.nanmean(d['chain.Fslack'][sel]):.1f} N")
     print(f"  tension guide: mean {math.degrees(d['tensionGuide.phi'][sel].mean()):.3f} deg, peak-to-peak "
           f"{math.degrees(np.ptp(d['tensionGuide.phi'][sel])):.3f} deg")
     print("  dominant orders, tensioner force: " + ", ".join(f"{o:.2f} ({a:.1f} N)" for o, a in orders_F))
-    print("  dominant orders, tension guide:  " + ", ".join(f"{o:.2f} ({math.degrees(a) * 1e3:.2f} mdeg)"
-                                                           for o, a in orders_phi))
-    print(f"  CPU time {summary['cpu']:.2f} s for {summary['simulated'] * 1e3:.1f} ms simulated: "
-          f"{summary['cpu_per_sim_s']:.2f} CPU s per simulated s (real-time factor); {summary['steps']} steps")
-    print(f"  outputs: {csv}\n  plots: {out / 'drive.png'}, {out / 'time_histories.png'}, {out / 'spectra.png'}, "
-          f"{out / 'link_cycle.png'}")
+    print("  dominant orders, tension guide:   " + ", ".join(f"{o:.2f} ({math.degrees(a) * 1e3:.2f} mdeg)"
+                                                             for o, a in orders_phi))
+    print(f"  CPU time {cpu:.2f} s for {duration * 1e3:.1f} ms simulated: {cpu / duration:.2f} CPU s per simulated s "
+          f"(real-time factor, FMU and master loop)")
+    print(f"  outputs: {csv}")
+    print(f"  plots: {out / 'drive.png'}, {out / 'time_histories.png'}, {out / 'spectra.png'}, {out / 'link_cycle.png'}")
 
 
 if __name__ == "__main__":

@@ -305,7 +305,7 @@ def time_series(rpm, duration, dt, data_dir=None, theta0_deg=0.0, speed_table=No
 
 
 def write_inputs_csv(path, rpm, duration, dt=2e-5, data_dir=None, theta0_deg=0.0):
-    """Writes the runner's input CSV (as harness.signals.write_inputs_csv: '#' comments, then
+    """Writes the input CSV of chaindrive-run ('#' comments, then
     'time,crankshaft.w,camshaftIntake.tau,camshaftExhaust.tau', SI units) from the tables."""
     speed = crankshaft_speed(rpm, data_dir)
     torque = camshaft_torque(rpm, data_dir)

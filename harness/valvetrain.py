@@ -49,7 +49,8 @@ tappet face at the distance r_b + h_c from the cam axis and always opposes the r
 cam's radius of curvature r_b + h_c + h_phiphi stays positive, see CamLobe.min_curvature_radius).
 F < 0 would mean that the valve train separates from the cam (valve float / jump): it is
 clamped at 0 and counted (CamshaftLoad.separated); with the parameters below it does not occur
-below about 9000 rpm (camshaft_load(...).min_contact_force reports the margin).
+below about 9400 rpm (float_speed; at 6000 rpm the contact force beyond 0.5 mm lift stays above
+250 N).
 omega_c = omega / 2 and alpha_c = (1/2) omega d omega / d theta come from the crankshaft speed
 model below (rigid chain); the camshaft's own inertia is not part of the load (the chain
 solver's camshaft sprocket carries it).
@@ -64,7 +65,8 @@ theta_true = theta + delta(theta); the speed omega = omega_0 (1 + d delta / d th
 over the crank angle is omega_0 = 2 pi n / 60 exactly. The gas-torque harmonics of an
 in-line four (engine orders k = 2, 4, 6, ..., 40) are modelled as T_k cos(k (theta - theta_p))
 with T_k / T_2 = 2 / k (a short pressure pulse per firing) and the pulse centre theta_p = 50 deg
-after each firing TDC (speed minimum near TDC, maximum near 95 deg after it). They turn
+after each firing TDC (with the higher orders the speed is lowest about 15-20 deg and
+highest about 75-80 deg after each firing TDC). They turn
 * the rigid crank train (flywheel, crankshaft, inertia J): angle amplitude A_k = T_k / (J k^2
   omega_0^2), in phase opposition to the torque; calibrated to A_2 = 2.7 deg at 800 rpm idle
   (the published idle swing of about 710-860 rpm), hence A_2(n) = 2.7 deg (800 rpm / n)^2 and
@@ -75,7 +77,8 @@ after each firing TDC (speed minimum near TDC, maximum near 95 deg after it). Th
   inertias J_1 (front) and J_2 (flywheel) coupled by the crank's torsional stiffness, with the
   torque on J_2, the angle of J_1 is exactly the rigid-body angle times 1 / (1 - r^2) (plus
   damping). H is 1.33 for order 2 at 6000 rpm and about 1 / (2 zeta) = 17 at resonance: 0.10 deg
-  at order 4 at 6000 rpm, 0.07 deg at order 6 at 4000 rpm, 0.05 deg at order 8 at 3000 rpm.
+  at order 4 at 6000 rpm, 0.07 deg at order 6 at 4000 rpm, 0.05 deg at order 8 at 3000 rpm,
+  0.03 deg at order 12 at 2000 rpm.
 In complex form: delta(theta) = sum_k Re{-A_k H(r_k) exp(i k (theta - theta_p))}.
 A slight cylinder-to-cylinder imbalance adds orders 0.5, 1 and 1.5 with angle amplitudes
 0.08, 0.02 and 0.009 A_2 (a torque imbalance of 0.5 % of T_2) at fixed phases.

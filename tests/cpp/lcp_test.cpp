@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -25,35 +26,7 @@
 
 #include "lcp/lemke.h"
 
-// ---------------------------------------------------------------------------------------------
-// Allocation counting for LcpAllocation.*: malloc, calloc and realloc of this executable forward
-// to glibc's implementations and count calls while gCountAllocations is set (Eigen allocates
-// through malloc, operator new ends in malloc too). Only with glibc and without sanitizers (they
-// bring their own malloc); elsewhere the test is skipped.
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
-#define LCP_TEST_COUNTS_ALLOCATIONS 1
-namespace {
-std::atomic<bool> gCountAllocations{false};
-std::atomic<long> gAllocations{0};
-}  // namespace
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t n, std::size_t size);
-void* __libc_realloc(void* p, std::size_t size);
-void* malloc(std::size_t size) noexcept {
-  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t n, std::size_t size) noexcept {
-  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t size) noexcept {
-  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
-  return __libc_realloc(p, size);
-}
-}
-#endif
+#include "allocation_counter.h"
 
 using namespace chaindrive::lcp;
 using Eigen::MatrixXd;
@@ -188,6 +161,9 @@ const std::vector<CollectionCase>& collection() {
   return cases;
 }
 
+// gtest prints the parameter by its file name
+void PrintTo(const CollectionCase& c, std::ostream* os) { *os << c.file; }
+
 class LcpCollection : public ::testing::TestWithParam<CollectionCase> {};
 
 // Status, pivots and solution as in the README; error <= 1e-12 where solved (the exact
@@ -197,7 +173,9 @@ TEST_P(LcpCollection, MatchesTheExpectedResult) {
   const Problem p = readLcpFile(dataPath(c.file));
   const Outcome o = solveProblem(p.M, p.q);
   ASSERT_EQ(statusName(o.result.status), std::string(statusName(c.status)));
-  if (c.pivots >= 0) EXPECT_EQ(o.result.pivots, c.pivots);
+  if (c.pivots >= 0) {
+    EXPECT_EQ(o.result.pivots, c.pivots);
+  }
   if (c.status == Status::Solved) {
     EXPECT_LE(o.result.error, 1e-12);
     EXPECT_DOUBLE_EQ(o.result.error, lcpError(p.M, p.q, o.z));
@@ -210,9 +188,9 @@ TEST_P(LcpCollection, MatchesTheExpectedResult) {
               o.result.error);
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, LcpCollection, ::testing::ValuesIn(collection()),
-                         [](const ::testing::TestParamInfo<CollectionCase>& info) {
-                           std::string s = info.param.file;
+INSTANTIATE_TEST_SUITE_P(LcpSiconos, LcpCollection, ::testing::ValuesIn(collection()),
+                         [](const ::testing::TestParamInfo<CollectionCase>& param) {
+                           std::string s = param.param.file;
                            s = s.substr(0, s.find('.'));
                            for (char& ch : s)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
@@ -557,16 +535,23 @@ void expectCoulomb(const FrictionProblem& p, const VectorXd& r, const VectorXd& 
     EXPECT_GE(uN, -tol) << "contact " << i;
     EXPECT_LE(std::min(std::abs(rN), std::abs(uN)), tol) << "contact " << i;
     EXPECT_LE(std::abs(rT), mu * rN + tol) << "contact " << i;
-    if (uT > tol) EXPECT_NEAR(rT, -mu * rN, tol) << "contact " << i;
-    if (uT < -tol) EXPECT_NEAR(rT, mu * rN, tol) << "contact " << i;
-    if (std::abs(rT) < mu * rN - tol) EXPECT_NEAR(uT, 0.0, tol) << "contact " << i;
+    if (uT > tol) {
+      EXPECT_NEAR(rT, -mu * rN, tol) << "contact " << i;
+    }
+    if (uT < -tol) {
+      EXPECT_NEAR(rT, mu * rN, tol) << "contact " << i;
+    }
+    if (std::abs(rT) < mu * rN - tol) {
+      EXPECT_NEAR(uT, 0.0, tol) << "contact " << i;
+    }
   }
 }
 
 }  // namespace
 
-// One contact with W = I, q = (-1, v): r_N = 1; sliding (r_T = -mu sign(v), u_T = v - r_T... )
-// for |v| > mu, sticking (r_T = -v, u_T = 0) for |v| < mu. Exact data: 1e-14.
+// One contact with W = I, q = (-1, v), mu = 0.3: u = r + q, so r_N = 1 (u_N = 0); for |v| > mu
+// the contact slides against u_T = v + r_T with r_T = -mu sign(v); for |v| <= mu it sticks with
+// r_T = -v (u_T = 0). Exact data and a few operations: 1e-14.
 TEST(LcpFrictionContact, SingleContactSlidesAndSticks) {
   FrictionProblem p;
   p.W = MatrixXd::Identity(2, 2);
@@ -689,12 +674,12 @@ TEST(LcpDeterminism, RepeatedSolvesAreBitIdentical) {
 // A solver sized once allocates nothing per solve for problems up to its capacity (solution
 // vectors of the right size passed in): counted through malloc/calloc/realloc while solving the
 // collection's problems of size <= 40 (including ray terminations, an iteration limit and the
-// periodic refactorizations of tobenna's 126 pivots). The counter is shown to work: a vector
-// allocated in the counted region and a problem beyond the capacity are both counted.
+// periodic refactorizations of tobenna's 126 pivots). The counter is shown to work: a
+// std::vector and an Eigen vector allocated in the counted region and a problem beyond the
+// capacity are all counted.
 TEST(LcpAllocation, NoHeapAllocationPerSolve) {
-#ifndef LCP_TEST_COUNTS_ALLOCATIONS
-  GTEST_SKIP() << "allocation counting needs glibc and no sanitizer";
-#else
+  if (!chaindrive::test::allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc and no sanitizer";
+  using chaindrive::test::countAllocations;
   std::vector<Problem> problems;
   for (const auto& c : collection()) problems.push_back(readLcpFile(dataPath(c.file)));
   MatrixXd murtyM;
@@ -706,42 +691,34 @@ TEST(LcpAllocation, NoHeapAllocationPerSolve) {
   std::vector<Result> results(problems.size() + 1);
   LemkeSolver solver(40);
 
-  gAllocations = 0;
-  gCountAllocations = true;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (std::size_t i = 0; i < problems.size(); ++i) results[i] = solver.solve(problems[i].M, problems[i].q, zs[i]);
-    results.back() = solver.solve(murtyM, murtyQ, zMurty, 100);
-  }
-  gCountAllocations = false;
-  const long duringSolves = gAllocations.load();
-
-  gAllocations = 0;
-  gCountAllocations = true;
-  {
+  const long duringSolves = countAllocations([&] {
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::size_t i = 0; i < problems.size(); ++i) results[i] = solver.solve(problems[i].M, problems[i].q, zs[i]);
+      results.back() = solver.solve(murtyM, murtyQ, zMurty, 100);
+    }
+  });
+  const long probeCount = countAllocations([] {
     std::vector<double> probe(100);
     probe[0] = 1.0;
-    EXPECT_EQ(probe[0], 1.0);
-  }
-  gCountAllocations = false;
-  const long probeCount = gAllocations.load();
-
+  });
+  const long eigenProbeCount = countAllocations([] {
+    VectorXd probe(100);
+    probe(0) = 1.0;
+  });
   MatrixXd bigM = MatrixXd::Identity(41, 41);
   VectorXd bigQ = VectorXd::Constant(41, -1.0), bigZ(41);
-  gAllocations = 0;
-  gCountAllocations = true;
-  const Result big = solver.solve(bigM, bigQ, bigZ);
-  gCountAllocations = false;
-  const long growCount = gAllocations.load();
+  Result big{};
+  const long growCount = countAllocations([&] { big = solver.solve(bigM, bigQ, bigZ); });
 
   EXPECT_EQ(duringSolves, 0);
-  EXPECT_GE(probeCount, 1);
-  EXPECT_GE(growCount, 1);  // the work arrays grow to 41 once
+  EXPECT_GE(probeCount, 1);       // operator new is counted
+  EXPECT_GE(eigenProbeCount, 1);  // Eigen's aligned malloc is counted
+  EXPECT_GE(growCount, 1);        // the work arrays grow to 41 once
   EXPECT_EQ(big.status, Status::Solved);
   EXPECT_EQ(results.back().status, Status::IterationLimit);
   int solved = 0;
   for (std::size_t i = 0; i + 1 < results.size(); ++i) solved += results[i].status == Status::Solved;
   EXPECT_EQ(solved, 15);
-#endif
 }
 
 // =============================================================================================
@@ -816,7 +793,7 @@ TEST(LcpReader, ErrorsNameTheFileAndTheProblem) {
 // The command-line tool (build/chaindrive-lcp next to build/tests/cpp/chaindrive_tests)
 
 namespace {
-struct Run {
+struct CliRun {
   int code;
   std::string out;
 };
@@ -828,9 +805,9 @@ std::filesystem::path cliPath() {
   return self.parent_path().parent_path().parent_path() / "chaindrive-lcp";
 }
 
-Run runCli(const std::string& args) {
+CliRun runCli(const std::string& args) {
   const std::string cmd = "'" + cliPath().string() + "' " + args + " 2>&1";
-  Run r{-1, ""};
+  CliRun r{-1, ""};
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   char buf[4096];
@@ -846,7 +823,7 @@ Run runCli(const std::string& args) {
 // status, pivots, error, z at full precision (17 significant digits).
 TEST(LcpCli, PrintsTheResultAndUsesTheExitCodes) {
   if (!std::filesystem::exists(cliPath())) GTEST_SKIP() << "chaindrive-lcp not found at " << cliPath();
-  Run r = runCli("'" + dataPath("lcp_deudeu.dat") + "'");
+  CliRun r = runCli("'" + dataPath("lcp_deudeu.dat") + "'");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("status: Solved\npivots: 2\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n1.3333333333333333\n2.3333333333333335\n"), std::string::npos) << r.out;

@@ -1,0 +1,66 @@
+"""Scenes through ChainDrive.fmu with the measured-torque tables (synthesized, harness/data)."""
+import argparse
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from harness import main as scene
+from harness import paths, plots, tables
+
+RPM = 2000.0
+
+
+@pytest.fixture(scope="module")
+def closed_loop_2000():
+    args = argparse.Namespace(drive=None, rpm=RPM, step=1e-4, method="fixed-verlet", solver_step=2.5e-6, rtol=1e-5,
+                              tables=None)
+    cycle = 120.0 / RPM
+    d = scene.run_closed(args, 3 * cycle, tables.camshaft_torque(RPM), tables.crankshaft_speed(RPM))
+    return d, d["time"] >= cycle  # the first engine cycle is the start transient
+
+
+def test_outputs_finite_and_tensioner_force_plausible(closed_loop_2000):
+    d, sel = closed_loop_2000
+    for k, v in d.items():
+        if not k.startswith("input."):
+            assert np.all(np.isfinite(v)), k
+    F = d["tensioner.F"][sel]
+    # DOMAIN: quasi-static tensioner force 100-400 N, dynamic peaks 1-3 kN at resonance; the
+    # default tensioner's preload is 60 N, so a mean of 30-400 N and peaks below 3 kN
+    assert 30.0 < F.mean() < 400.0
+    assert F.min() >= 0.0 and F.max() < 3000.0
+    # the camshafts follow the crankshaft at half its speed
+    w = d["camshaftIntake.w"][sel].mean()
+    assert w == pytest.approx(0.5 * RPM * 2 * np.pi / 60, rel=0.01)
+
+
+def test_tensioner_force_spectrum_sits_at_the_engine_orders_of_the_tables(closed_loop_2000):
+    d, sel = closed_loop_2000
+    o, a = plots.order_spectrum(d["time"][sel], d["tensioner.F"][sel], RPM)
+    keep = (o > 0.75) & (o < 40)
+    o, a = o[keep], a[keep]
+    peaks = [i for i in range(1, len(a) - 1) if a[i] >= a[i - 1] and a[i] >= a[i + 1]]
+    top = sorted(peaks, key=lambda i: a[i], reverse=True)
+    print("largest tensioner-force peaks (order, N):", [(round(o[i], 2), round(a[i], 1)) for i in top[:5]])
+    # the camshaft-torque tables of a four-cylinder engine have engine order 2 and its multiples,
+    # order 2 by far the largest; the crankshaft-speed table adds even orders, strongest near the
+    # crankshaft's torsional resonance (400 Hz: order 12 at 2000 rpm)
+    torque = tables.camshaft_torque(RPM).columns["camshaftIntake.tau"]
+    spectrum = np.abs(np.fft.rfft(torque - torque.mean()))
+    assert np.argmax(spectrum) == 4  # bin 4 over 720 deg = order 2
+    # the largest component is at order 2 and the two largest at even engine orders of the tables
+    # (tolerance: the window's resolution, 0.25 order); what follows is the drive's own response
+    assert abs(o[top[0]] - 2.0) <= 0.26
+    for i in top[:2]:
+        assert abs(o[i] - 2.0 * round(o[i] / 2.0)) <= 0.26
+
+
+def test_main_job_open_loop_quick(tmp_path):
+    p = subprocess.run([sys.executable, "-m", "harness.main", "--coupling", "open", "--cycles", "1.25", "--out",
+                        str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
+    assert p.returncode == 0, p.stderr + p.stdout
+    assert "tensioner force: mean" in p.stdout and "real-time factor" in p.stdout
+    for name in ("outputs.csv", "drive.png", "time_histories.png", "spectra.png", "link_cycle.png"):
+        assert (tmp_path / name).stat().st_size > 1000, name
