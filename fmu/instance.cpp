@@ -169,6 +169,13 @@ fmi2Status Instance::prepare() {
     methods += (methods.empty() ? "" : ", ") + n;
   }
   if (!knownMethod) problems.push_back("solver.method: '" + params_.method + "' is unknown; allowed: " + methods);
+  if (!params_.contactMethod.empty() && params_.contactMethod != "compliant" && params_.contactMethod != "event-driven" &&
+      params_.contactMethod != "time-stepping")
+    problems.push_back("contact.method: '" + params_.contactMethod +
+                       "' is unknown; allowed: compliant, event-driven, time-stepping (or empty: the drive's)");
+  if (!params_.jointModel.empty() && params_.jointModel != "journal-bearing" && params_.jointModel != "ideal")
+    problems.push_back("chain.jointModel: '" + params_.jointModel +
+                       "' is unknown; allowed: journal-bearing, ideal (or empty: the drive's)");
   if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
     problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
   if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
@@ -240,6 +247,8 @@ fmi2Status Instance::prepare() {
     opt.integrator.rtol = params_.tolerance;
     opt.integrator.fixedStep = params_.step;
     opt.integrator.stopAtOutputs = true;
+    opt.contactMethod = params_.contactMethod;
+    opt.jointModel = params_.jointModel;
     opt.preload.enabled = params_.preload;
     opt.monitoredLink = params_.linkIndex;
     auto held = std::make_unique<HeldInputs>(m);
@@ -446,6 +455,8 @@ fmi2Status Instance::getString(const fmi2ValueReference vr[], size_t n, fmi2Stri
   for (size_t i = 0; i < n; ++i) {
     if (vr[i] == kDriveFile) v[i] = params_.driveFile.c_str();
     else if (vr[i] == kSolverMethod) v[i] = params_.method.c_str();
+    else if (vr[i] == kContactMethod) v[i] = params_.contactMethod.c_str();
+    else if (vr[i] == kChainJointModel) v[i] = params_.jointModel.c_str();
     else return badVr("fmi2GetString", vr[i], "is not a String variable");
   }
   return fmi2OK;
@@ -513,14 +524,18 @@ fmi2Status Instance::setBoolean(const fmi2ValueReference vr[], size_t n, const f
 
 fmi2Status Instance::setString(const fmi2ValueReference vr[], size_t n, const fmi2String v[]) {
   for (size_t i = 0; i < n; ++i) {
-    if (vr[i] != kDriveFile && vr[i] != kSolverMethod)
-      return badVr("fmi2SetString", vr[i], "is not a settable String variable");
+    std::string* target = vr[i] == kDriveFile        ? &params_.driveFile
+                          : vr[i] == kSolverMethod    ? &params_.method
+                          : vr[i] == kContactMethod   ? &params_.contactMethod
+                          : vr[i] == kChainJointModel ? &params_.jointModel
+                                                      : nullptr;
+    if (!target) return badVr("fmi2SetString", vr[i], "is not a settable String variable");
     if (!v[i]) {
       log(fmi2Error, "logStatusError", "fmi2SetString: NULL string for value reference %u", vr[i]);
       return fmi2Error;
     }
     if (parameterChange(*findVariable(vr[i])) != fmi2OK) return fmi2Error;
-    (vr[i] == kDriveFile ? params_.driveFile : params_.method) = v[i];
+    *target = v[i];
   }
   return fmi2OK;
 }

@@ -81,6 +81,8 @@ class Instance {
     std::string driveFile;
     int linkIndex = -1;
     std::string method = "fixed-verlet";
+    std::string contactMethod;  // "": the drive's
+    std::string jointModel;     // "": the drive's
     double tolerance = 1e-5;
     double step = 2.5e-6;
     bool preload = true;

@@ -47,6 +47,8 @@ enum Vr : unsigned {
   kSolverTolerance = 103,
   kSolverStep = 104,
   kSolverPreload = 105,
+  kContactMethod = 106,
+  kChainJointModel = 107,
   kTensionerPreload = 110,
   kTensionerStiffness = 111,
   kTensionerDamping = 112,
@@ -105,6 +107,8 @@ constexpr Variable kVariables[] = {
   {"tensioner.stiffness",        kTensionerStiffness,       Type::Real,    Causality::Parameter, "-1"},
   {"tensioner.damping",          kTensionerDamping,         Type::Real,    Causality::Parameter, "-1"},
   {"tensioner.dampingExtension", kTensionerDampingExtension, Type::Real,   Causality::Parameter, "-1"},
+  {"contact.method",             kContactMethod,            Type::String,  Causality::Parameter, ""},
+  {"chain.jointModel",           kChainJointModel,          Type::String,  Causality::Parameter, ""},
 };
 // clang-format on
 

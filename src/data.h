@@ -72,6 +72,11 @@ struct ContactPoint {
 struct Data {
   explicit Data(const Model& m);
 
+  // what generalizedForces evaluates: the rigid-contact methods switch off the compliant contacts
+  // (and, for ideal joints, the journal bearings) and treat them as constraints instead
+  bool compliantContacts = true;
+  bool jointForces = true;
+
   InputValues inputs;
   std::vector<LinkKin> links;                 // (links)
   std::vector<double> rotorAngle, rotorRate;  // (rotors) math sense

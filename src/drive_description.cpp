@@ -381,7 +381,7 @@ DriveDescription parseDriveDescription(std::string_view text) {
                                               fmt(d.chain.pitch) + " m");
       Fields jt = c.object("joint", true);
       if (jt.valid()) {
-        d.chain.joint.model = jt.string("model", {"journal-bearing"}, std::string("journal-bearing"));
+        d.chain.joint.model = jt.string("model", {"journal-bearing", "ideal"}, std::string("journal-bearing"));
         d.chain.joint.stiffness = jt.number("stiffness", 0.0, 1e12, std::nullopt, "N/m", true);
         d.chain.joint.damping = jt.number("damping", 0.0, 1e6, 0.0, "N s/m");
         d.chain.joint.clearance = jt.number("clearance", 0.0, 1e-3, 0.0, "m");
@@ -510,6 +510,7 @@ DriveDescription parseDriveDescription(std::string_view text) {
   {
     Fields f = top.object("contact", true);
     if (f.valid()) {
+      d.contact.method = f.string("method", {"compliant", "event-driven", "time-stepping"}, std::string("compliant"));
       d.contact.frictionRegularization = f.number("frictionRegularization", 1e-6, 10.0, 0.05, "m/s");
       d.contact.rollerSprocket = readContactLaw(f.object("rollerSprocket", true));
       d.contact.plateGuide = readContactLaw(f.object("plateGuide", !d.guides.empty()));

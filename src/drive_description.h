@@ -43,7 +43,7 @@ struct SprocketDesc {
 };
 
 struct JointDesc {
-  std::string model = "journal-bearing";  // radial spring-damper (paper Fig. 2)
+  std::string model = "journal-bearing";  // radial spring-damper (paper Fig. 2), or "ideal" (bilateral constraints)
   double stiffness = 0.0;                 // [N/m] radial, per joint (the link's longitudinal stiffness)
   double damping = 0.0;                   // [N s/m]
   double clearance = 0.0;                 // [m] radial clearance of the journal bearing
@@ -109,6 +109,7 @@ struct ContactLawDesc {
 };
 
 struct ContactDesc {
+  std::string method = "compliant";      // "compliant", "event-driven" or "time-stepping"
   double frictionRegularization = 0.05;  // [m/s] velocity scale of the regularised Coulomb law
   ContactLawDesc rollerSprocket;
   ContactLawDesc plateGuide;

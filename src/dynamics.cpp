@@ -30,9 +30,13 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   evaluateKinematics(m, d, y);
   std::fill(d.gen.begin(), d.gen.end(), 0.0);
   double pIn = 0.0, pDiss = 0.0;
-  pDiss += evaluateJoints(m, d);
-  detectContacts(m, d, 0.0);
-  pDiss += evaluateCompliantContacts(m, d);
+  if (d.jointForces) pDiss += evaluateJoints(m, d);
+  if (d.compliantContacts) {
+    detectContacts(m, d, 0.0);
+    pDiss += evaluateCompliantContacts(m, d);
+  } else {
+    d.nContacts = 0;
+  }
   evaluateBodyForces(m, d, pIn, pDiss);
   d.powerInput = pIn;
   d.powerDissipated = pDiss;
@@ -75,7 +79,7 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
   }
   for (const RotorModel& r : m.rotors)
     if (!r.prescribed) e.kinetic += 0.5 * r.inertia * y[r.stateRate] * y[r.stateRate];
-  e.elastic = jointEnergy(m, d);
+  e.elastic = d.jointForces ? jointEnergy(m, d) : 0.0;
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& c = d.contacts[i];
     if (c.gap >= 0.0) continue;

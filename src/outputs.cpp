@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "contact_compliant.h"
+
 namespace chaindrive {
 
 double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
@@ -21,8 +23,29 @@ double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
 }
 
 void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
-                    Outputs& out) {
+                    Outputs& out, const RigidForces* rigid) {
+  d.compliantContacts = rigid == nullptr;
+  d.jointForces = rigid == nullptr || rigid->joints == nullptr;
   generalizedForces(m, d, in, t, y);
+  if (rigid && rigid->contacts) {
+    d.nContacts = 0;
+    for (const ContactPoint& c : *rigid->contacts) {
+      if (d.nContacts >= static_cast<int>(d.contacts.size())) break;
+      d.contacts[d.nContacts++] = c;
+      addContactGen(m, c, d.gen.data());
+    }
+  }
+  if (rigid && rigid->joints && static_cast<int>(rigid->joints->size()) == 2 * m.chain.links) {
+    const int n = m.chain.links;
+    for (int j = 0; j < n; ++j) {
+      JointState& js = d.joints[j];
+      js.force = Vec2{(*rigid->joints)[2 * j], (*rigid->joints)[2 * j + 1]};
+      const Vec2 axis = d.links[j].e + d.links[(j + 1) % n].e;
+      const double an = norm(axis);
+      js.tension = an > 0.0 ? dot(js.force, (1.0 / an) * axis) : 0.0;
+      js.deformation = norm(d.links[j].front - d.links[(j + 1) % n].rear);
+    }
+  }
   const std::vector<double>& sign = m.rotorOutputSign;
   const std::size_t nr = m.rotors.size();
   out.time = t;

@@ -28,9 +28,16 @@ struct Outputs {
   double maxJointDeformation = 0.0; // [m]
 };
 
+/// Constraint forces of the rigid-contact methods, for the outputs.
+struct RigidForces {
+  const std::vector<ContactPoint>* contacts = nullptr;  // contact points with fN, fT set
+  const std::vector<double>* joints = nullptr;          // ideal joints: (fx, fy) per joint on link j's front pin
+};
+
 /// Evaluates the dynamics at (t, y) and fills the outputs. `monitoredLink` overrides the model's.
+/// With `rigid`, the contact (and ideal-joint) forces are those of the complementarity method.
 void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
-                    Outputs& out);
+                    Outputs& out, const RigidForces* rigid = nullptr);
 
 /// Force at a span probe, interpolated between the two joints that bracket it.
 double spanForce(const Model& m, const Data& d, const SpanProbe& probe);

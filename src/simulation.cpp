@@ -96,10 +96,32 @@ bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept 
 Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
                        std::unique_ptr<InputSignal> inputs)
     : model_(std::move(model)), options_(opt), inputs_(std::move(inputs)) {
-  system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.blowUpDeformation);
-  integrator_ = makeIntegrator(*system_, options_.integrator);
+  const DriveDescription& d = model_->description;
+  contactMethod_ = options_.contactMethod.empty() ? d.contact.method : options_.contactMethod;
+  const std::string joints = options_.jointModel.empty() ? d.chain.joint.model : options_.jointModel;
+  if (joints != "journal-bearing" && joints != "ideal")
+    throw std::invalid_argument("joint model '" + joints + "' is unknown; allowed: journal-bearing, ideal");
+  if (contactMethod_ == "compliant") {
+    if (joints == "ideal")
+      throw std::invalid_argument("ideal joints need a rigid-contact method (event-driven or time-stepping); with "
+                                  "compliant contacts use journal-bearing joints");
+    system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.blowUpDeformation);
+    integrator_ = makeIntegrator(*system_, options_.integrator);
+  } else if (contactMethod_ == "event-driven" || contactMethod_ == "time-stepping") {
+    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.blowUpDeformation);
+    auto ri = std::make_unique<RigidIntegrator>(rigid_, contactMethod_, options_.integrator);
+    rigidIntegrator_ = ri.get();
+    integrator_ = std::move(ri);
+  } else {
+    throw std::invalid_argument("contact method '" + contactMethod_ +
+                                "' is unknown; allowed: compliant, event-driven, time-stepping");
+  }
   outData_ = std::make_unique<Data>(*model_);
   y_.assign(model_->nStates, 0.0);
+}
+
+long long Simulation::rhsEvaluations() const {
+  return system_ ? system_->data().rhsEvaluations : rigidIntegrator_->contactStats().rhsEvaluations;
 }
 
 void Simulation::start(double t0) {
@@ -129,7 +151,15 @@ void Simulation::advanceTo(double t) {
 }
 
 const Outputs& Simulation::outputs() {
-  computeOutputs(*model_, *outData_, *inputs_, t_, y_.data(), options_.monitoredLink, out_);
+  if (rigidIntegrator_) {
+    rigidIntegrator_->contactPoints(rigidContacts_);
+    RigidForces rf;
+    rf.contacts = &rigidContacts_;
+    if (rigid_->idealJoints()) rf.joints = &rigidIntegrator_->jointForces();
+    computeOutputs(*model_, *outData_, *inputs_, t_, y_.data(), options_.monitoredLink, out_, &rf);
+  } else {
+    computeOutputs(*model_, *outData_, *inputs_, t_, y_.data(), options_.monitoredLink, out_);
+  }
   return out_;
 }
 

@@ -12,11 +12,15 @@
 #include "model.h"
 #include "outputs.h"
 #include "preload.h"
+#include "rigid_drive.h"
 
 namespace chaindrive {
 
 struct SimulationOptions {
-  IntegratorSettings integrator;
+  IntegratorSettings integrator;      // compliant contacts: the integrator; rigid: fixedStep (time
+                                      // stepping) or rtol (event driven)
+  std::string contactMethod;          // "", "compliant", "event-driven", "time-stepping" ("": the drive's)
+  std::string jointModel;             // "", "journal-bearing", "ideal" ("": the drive's)
   PreloadOptions preload;
   double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch is a blow-up
   int monitoredLink = -1;           // -1: the model's
@@ -74,8 +78,11 @@ class Simulation {
   InputSignal& inputs() { return *inputs_; }
   const PreloadReport& preloadReport() const { return preload_; }
   IntegratorStats integratorStats() const { return integrator_->stats(); }
-  long long rhsEvaluations() const { return system_->data().rhsEvaluations; }
+  long long rhsEvaluations() const;
   const std::string& integratorName() const { return options_.integrator.method; }
+  const std::string& contactMethod() const { return contactMethod_; }
+  /// Counters of the rigid-contact methods (nullptr for compliant contacts).
+  const ns::NsStats* contactStats() const { return rigidIntegrator_ ? &rigidIntegrator_->contactStats() : nullptr; }
   /// Outputs at the current state (evaluates the dynamics once more; no allocation after the first call).
   const Outputs& outputs();
 
@@ -83,8 +90,12 @@ class Simulation {
   std::shared_ptr<const Model> model_;
   SimulationOptions options_;
   std::unique_ptr<InputSignal> inputs_;
-  std::unique_ptr<DriveSystem> system_;
+  std::string contactMethod_;
+  std::unique_ptr<DriveSystem> system_;              // compliant contacts
+  std::shared_ptr<RigidContactDrive> rigid_;         // rigid contacts
+  RigidIntegrator* rigidIntegrator_ = nullptr;       // owned by integrator_
   std::unique_ptr<Integrator> integrator_;
+  std::vector<ContactPoint> rigidContacts_;
   std::unique_ptr<Data> outData_;
   std::vector<double> y_;
   double t_ = 0.0;

@@ -4,8 +4,12 @@
 //
 // Exit codes: 0 solved; 1 ray termination, iteration limit or numerical failure (the status is
 // still printed); 2 bad arguments or an unreadable file.
+#include <time.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <vector>
 #include <limits>
 #include <string>
 
@@ -15,12 +19,13 @@ using namespace chaindrive::lcp;
 
 static void usage(std::FILE* out) {
   std::fputs(
-      "usage: chaindrive-lcp FILE [--max-pivots N] [--fc2d]\n"
+      "usage: chaindrive-lcp FILE [--max-pivots N] [--fc2d] [--repeat N]\n"
       "  Solves the LCP w = M z + q >= 0, z >= 0, w'z = 0 read from FILE (Siconos dense format)\n"
       "  with Lemke's method (lexicographic). With --fc2d, FILE is a planar friction-contact\n"
       "  problem (Siconos fc2d format), solved through its LCP form; the contact forces\n"
       "  (r_N, r_T per contact) are printed after z.\n"
-      "  Prints: status, pivots, error, then z one value per line (full precision).\n"
+      "  Prints: status, pivots, error, then z one value per line (full precision). With --repeat N\n"
+      "  the problem is solved N times and the median CPU time per solve is printed as well.\n"
       "  Exit code: 0 solved; 1 ray termination, iteration limit, numerical failure; 2 bad\n"
       "  arguments or unreadable file.\n",
       out);
@@ -43,6 +48,7 @@ int main(int argc, char** argv) {
   std::string file;
   int maxPivots = -1;
   bool fc2d = false;
+  int repeat = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
@@ -53,6 +59,13 @@ int main(int argc, char** argv) {
     } else if (a == "--max-pivots") {
       if (i + 1 >= argc || !parseInt(argv[i + 1], maxPivots)) {
         std::fprintf(stderr, "chaindrive-lcp: --max-pivots needs a non-negative integer\n");
+        usage(stderr);
+        return 2;
+      }
+      ++i;
+    } else if (a == "--repeat") {
+      if (i + 1 >= argc || !parseInt(argv[i + 1], repeat) || repeat < 1) {
+        std::fprintf(stderr, "chaindrive-lcp: --repeat needs a positive integer\n");
         usage(stderr);
         return 2;
       }
@@ -96,6 +109,19 @@ int main(int argc, char** argv) {
   Eigen::VectorXd z(q.size());
   const Result r = solver.solve(M, q, z, maxPivots);
   std::printf("status: %s\n", statusName(r.status));
+  if (repeat > 0) {
+    // median CPU time per solve (the solver is sized once; no allocation per solve)
+    std::vector<double> times;
+    for (int k = 0; k < repeat; ++k) {
+      timespec a{}, b{};
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &a);
+      solver.solve(M, q, z, maxPivots);
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &b);
+      times.push_back(static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec));
+    }
+    std::sort(times.begin(), times.end());
+    std::printf("time per solve: %.9g s (median of %d)\n", times[times.size() / 2], repeat);
+  }
   std::printf("pivots: %d\n", r.pivots);
   std::printf("error: %.17g\n", r.error);
   std::printf("z:\n");

@@ -38,8 +38,11 @@ void usage() {
       "  --cycles N              engine cycles to simulate, 720 deg crank each (default 2)\n"
       "  --duration S            simulated time [s] instead of --cycles\n"
       "  --integrator NAME       %s (default arkode-erk)\n"
-      "  --rtol X                relative tolerance of adaptive integrators (default 1e-5)\n"
-      "  --step S                step of fixed-step integrators [s] (default 2e-6)\n"
+      "  --contact-method M      compliant, event-driven or time-stepping (default: the drive's)\n"
+      "  --joint-model J         journal-bearing or ideal (default: the drive's)\n"
+      "  --rtol X                relative tolerance of adaptive integrators and of the event-driven\n"
+      "                          method (default 1e-5)\n"
+      "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6)\n"
       "  --max-step S            largest step of adaptive integrators [s] (default unlimited)\n"
       "  --output-step S         output interval [s] (default 1e-4)\n"
       "  --load NAME=TORQUE      constant load torque [N m] on a free sprocket (+ opposes rotation)\n"
@@ -47,6 +50,12 @@ void usage() {
       "                          amplitude A [deg]; repeatable\n"
       "  --inputs FILE.csv       time series instead: time,<crank>.w,<sprocket>.tau,... (SI)\n"
       "  --link N                monitored link (default: from the drive)\n"
+      "  --rebound-threshold V   event driven: rebounds slower than V [m/s] close the contact (0.05)\n"
+      "  --gap-tolerance G       rigid contacts: closed within G [m] (1e-8)\n"
+      "  --max-event-rate R      event driven: more events per second (over any 100 events) is a\n"
+      "                          runaway-event failure (2e5)\n"
+      "  --record-lcps DIR:N     rigid contacts: write the first N LCPs to DIR (Siconos format),\n"
+      "                          and every LCP not solved (lcp_failed_K.dat)\n"
       "  --no-preload            start from the unloaded nominal pose\n"
       "  --out FILE.csv          write outputs (default: no file)\n"
       "  --quiet                 print the summary only\n",
@@ -80,6 +89,18 @@ int main(int argc, char** argv) {
       else if (a == "--cycles") cycles = num(next());
       else if (a == "--duration") duration = num(next());
       else if (a == "--integrator") opt.integrator.method = next();
+      else if (a == "--contact-method") opt.contactMethod = next();
+      else if (a == "--joint-model") opt.jointModel = next();
+      else if (a == "--rebound-threshold") opt.integrator.reboundThreshold = num(next());
+      else if (a == "--gap-tolerance") opt.integrator.gapTolerance = num(next());
+      else if (a == "--record-lcps") {
+        const std::string spec = next();  // DIR:COUNT
+        const auto c = spec.rfind(':');
+        if (c == std::string::npos) throw std::invalid_argument("--record-lcps expects DIRECTORY:COUNT");
+        opt.integrator.recordLcpDirectory = spec.substr(0, c);
+        opt.integrator.recordLcpCount = static_cast<int>(num(spec.substr(c + 1)));
+      }
+      else if (a == "--max-event-rate") opt.integrator.maxEventsPerSecond = num(next());
       else if (a == "--rtol") opt.integrator.rtol = num(next());
       else if (a == "--step") opt.integrator.fixedStep = num(next());
       else if (a == "--max-step") opt.integrator.maxStep = num(next());
@@ -189,9 +210,18 @@ int main(int argc, char** argv) {
     const double cpu = cpuSeconds() - cpuRun0;
     const IntegratorStats st = sim.integratorStats();
     if (status != 0) std::printf("FAILED: %s\n", failure.c_str());
+    const std::string method = sim.contactMethod() == "compliant" ? opt.integrator.method : sim.contactMethod();
     std::printf("integrator %s: simulated %.6f s (%.3f engine cycles at %.0f rpm) in %.3f s CPU -> %.3f CPU s per simulated s\n",
-                opt.integrator.method.c_str(), tReached, tReached * w0 / (4.0 * kPi), rpm, cpu,
-                tReached > 0 ? cpu / tReached : 0.0);
+                method.c_str(), tReached, tReached * w0 / (4.0 * kPi), rpm, cpu, tReached > 0 ? cpu / tReached : 0.0);
+    if (const ns::NsStats* cs = sim.contactStats()) {
+      const double per = tReached > 0 ? 1.0 / tReached : 0.0;
+      auto f = [](long long v) { return static_cast<double>(v); };
+      std::printf("contact method %s: per simulated second %.0f steps, %.0f events, %.0f impacts, %.0f LCP solves, "
+                  "mean LCP size %.1f, max %lld, %.0f pivots, %.0f regularized LCPs\n",
+                  sim.contactMethod().c_str(), f(cs->steps) * per, f(cs->events) * per, f(cs->impacts) * per,
+                  f(cs->lcpSolves) * per, cs->lcpSolves ? f(cs->lcpSizeSum) / f(cs->lcpSolves) : 0.0, cs->lcpSizeMax,
+                  f(cs->pivots) * per, f(cs->regularizedLcps) * per);
+    }
     std::printf("steps %lld, rhs evaluations %lld (model count %lld), jacobians %lld, error-test failures %lld, "
                 "convergence failures %lld, last step %.3e s\n",
                 st.steps, st.rhsEvaluations, sim.rhsEvaluations(), st.jacobianEvaluations, st.errorTestFailures,

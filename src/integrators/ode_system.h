@@ -45,6 +45,13 @@ struct IntegratorSettings {
   std::string erkTable = "ARKODE_DORMAND_PRINCE_7_4_5";
   bool stopAtOutputs = false;         // never step past an output time (co-simulation)
   long maxStepsPerOutput = 5000000;
+  // rigid-contact methods
+  double reboundThreshold = 0.05;     // [m/s] event driven: slower rebounds close the contact
+  double maxEventsPerSecond = 2e5;    // event driven: a higher rate is a runaway-event failure
+  double gapTolerance = 1e-8;         // [m] rigid contacts: closed within this gap (time stepping:
+                                      // active below it; event driven: open beyond it)
+  std::string recordLcpDirectory;     // write the LCPs solved (Siconos format) into this directory
+  int recordLcpCount = 0;             // ... the first this many
 };
 
 struct IntegratorStats {

@@ -18,12 +18,17 @@ namespace {
 
 // An entry a_i of the entering column counts as positive only above this factor times the bound
 // |B^-1 row i|_1 |A_e|_inf of its rounding error: smaller ones are rounding noise of zeros.
-constexpr double kPivotTolerance = 1e-11;
-// Two ratios (or two lexicographic components) tie within this factor times their rounding
-// bounds; exact degeneracy shows up as near ties after rounding.
-constexpr double kTieTolerance = 1e-11;
+constexpr double kPivotTolerance = 1e-13;
+// A basic value b_i (or an entry of B^-1) counts as zero within this many units of roundoff
+// times its rounding bound |B^-1 row i|_1 |q|_inf (|B^-1 row i|_1).
+constexpr double kZeroTolerance = 16.0;
+// Two nonzero ratios (or lexicographic components) tie within this relative difference.
+constexpr double kTieTolerance = 1e-12;
 // The inverse basis is recomputed from scratch every this many pivots.
 constexpr int kRefactorInterval = 50;
+// A basis that Lemke's method ends with is accepted as a solution only if its error (see
+// lemke.h) is below this; above it the basis was numerically singular (NumericalFailure).
+constexpr double kAcceptedError = 1e-8;
 
 double naturalMapError(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
                        const Eigen::Ref<const Eigen::VectorXd>& z) {
@@ -130,6 +135,7 @@ void LemkeSolver::column(const Eigen::Ref<const Eigen::MatrixXd>& M, int n, int 
 // Lexicographic minimum ratio test on the entering column a_; returns the pivot row or -1 (no
 // positive entry: ray termination).
 int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
   int nc = 0;
   for (int i = 0; i < n; ++i) {
     const double ai = a_(i);
@@ -140,20 +146,28 @@ int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
   }
   if (nc == 0) return -1;
 
-  // First component: the ratio b_i / a_i (b_i >= 0 up to rounding).
-  auto ratio = [&](int i) { return std::max(b_(i), 0.0) / a_(i); };
-  auto ratioNoise = [&](int i) { return kTieTolerance * rowNorm_(i) * qNorm / a_(i); };
+  // First component: the ratio b_i / a_i. A basic value within its rounding bound of zero counts
+  // as zero (the degenerate rows that the lexicographic rule is for); other ratios tie only if
+  // they agree to a few units in the last place.
+  auto ratio = [&](int i) {
+    const double bi = b_(i);
+    return bi <= kZeroTolerance * eps * rowNorm_(i) * qNorm ? 0.0 : bi / a_(i);
+  };
   int imin = cand_[0];
+  double tmin = ratio(imin);
   for (int c = 1; c < nc; ++c) {
     const int i = cand_[static_cast<std::size_t>(c)];
-    if (ratio(i) < ratio(imin)) imin = i;
+    const double t = ratio(i);
+    if (t < tmin) {
+      imin = i;
+      tmin = t;
+    }
   }
   {
-    const double tmin = ratio(imin), nmin = ratioNoise(imin);
     int kept = 0;
     for (int c = 0; c < nc; ++c) {
       const int i = cand_[static_cast<std::size_t>(c)];
-      if (ratio(i) - tmin <= ratioNoise(i) + nmin) cand_[static_cast<std::size_t>(kept++)] = i;
+      if (ratio(i) <= tmin * (1.0 + kTieTolerance)) cand_[static_cast<std::size_t>(kept++)] = i;
     }
     nc = kept;
   }
@@ -163,20 +177,28 @@ int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
     if (basis_[static_cast<std::size_t>(cand_[static_cast<std::size_t>(c)])] == 2 * n)
       return cand_[static_cast<std::size_t>(c)];
 
-  // Further components: the columns of B^-1, divided by a_i, in order.
+  // Further components: the columns of B^-1, divided by a_i, in order; entries within their
+  // rounding bound of zero count as zero.
   for (int k = 0; k < n && nc > 1; ++k) {
-    auto value = [&](int i) { return binv_(i, k) / a_(i); };
-    auto noise = [&](int i) { return kTieTolerance * rowNorm_(i) / a_(i); };
+    auto value = [&](int i) {
+      const double v = binv_(i, k);
+      return std::abs(v) <= kZeroTolerance * eps * rowNorm_(i) ? 0.0 : v / a_(i);
+    };
     imin = cand_[0];
+    double vmin = value(imin);
     for (int c = 1; c < nc; ++c) {
       const int i = cand_[static_cast<std::size_t>(c)];
-      if (value(i) < value(imin)) imin = i;
+      const double v = value(i);
+      if (v < vmin) {
+        imin = i;
+        vmin = v;
+      }
     }
-    const double vmin = value(imin), nmin = noise(imin);
     int kept = 0;
     for (int c = 0; c < nc; ++c) {
       const int i = cand_[static_cast<std::size_t>(c)];
-      if (value(i) - vmin <= noise(i) + nmin) cand_[static_cast<std::size_t>(kept++)] = i;
+      const double v = value(i);
+      if (v - vmin <= kTieTolerance * std::abs(vmin)) cand_[static_cast<std::size_t>(kept++)] = i;
     }
     nc = kept;
   }
@@ -360,6 +382,11 @@ Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen:
   res.pivots = pivots;
   extractZ(n, z);
   res.error = naturalMapError(M, q, z);
+  if ((status == Status::RayTermination || status == Status::IterationLimit) && res.error <= kAcceptedError) {
+    // z0 is zero to rounding: the almost-complementary point is a solution (the degenerate last
+    // pivot that would take z0 out was lost in rounding)
+    status = res.status = Status::Solved;
+  }
   if (status == Status::Solved) {
     // Polish: the same basis from a fresh factorization; keep the better of the two.
     zBest_.head(n) = z;
@@ -369,7 +396,7 @@ Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen:
       if (e < res.error) res.error = e;
       else z = zBest_.head(n);
     }
-    if (!std::isfinite(res.error)) res.status = Status::NumericalFailure;
+    if (!(res.error <= kAcceptedError)) res.status = Status::NumericalFailure;  // also NaN
   }
   return res;
 }

@@ -25,7 +25,10 @@
 // recomputed from the basis by Gauss-Jordan elimination with partial pivoting, the basic values
 // are recomputed and improved by one step of iterative refinement. The final solution is the
 // better (by the error below) of the updated and the recomputed one; tiny negative z from
-// rounding are set to zero.
+// rounding are set to zero. A final error above 1e-8 (a numerically singular basis: the pivots
+// followed rounding noise) turns Solved into NumericalFailure; conversely, a ray termination or
+// iteration limit at a point whose error is below 1e-8 (z0 zero to rounding, the last degenerate
+// pivot lost in rounding) is a solution.
 //
 // Pivot counting convention. `pivots` counts the pivots AFTER the initial one that brings z0
 // into the basis (the convention of Siconos' lcp_lexicolemke and of the classical statement
@@ -57,7 +60,8 @@ enum class Status {
   Solved,            ///< z solves the LCP (z0 left the basis); see Result::error
   RayTermination,    ///< the entering column has no positive entry: Lemke finds no solution
   IterationLimit,    ///< maxPivots pivots done without a solution
-  NumericalFailure,  ///< non-finite data or values, or a numerically singular basis
+  NumericalFailure,  ///< non-finite data or values, a numerically singular basis, or an end basis
+                     ///< whose error exceeds 1e-8
 };
 
 /// "Solved", "RayTermination", "IterationLimit", "NumericalFailure".

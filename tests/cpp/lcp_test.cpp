@@ -212,6 +212,20 @@ TEST(LcpCollectionFiles, TableCoversEveryFile) {
 
 // CPS_1: M = [[1, 1], [1, 1]], q = (-1, -1): every z >= 0 with z1 + z2 = 1 solves it (singular
 // M); the sum is exact up to rounding (1e-14).
+// LCPs recorded from the drive whose Delassus matrix is singular (tests/data/lcp_chain/README.md):
+// solved, with Siconos' pivot counts and an error at rounding level (Siconos: 2e-15 and 6e-16).
+TEST(LcpChain, IllConditionedDriveProblemsAreSolved) {
+  const std::pair<const char*, int> cases[] = {{"chain_ts_singular_1.dat", 91}, {"chain_ts_singular_2.dat", 75}};
+  for (const auto& [file, pivots] : cases) {
+    const Problem p = readLcpFile(std::string(CHAINDRIVE_SOURCE_DIR) + "/tests/data/lcp_chain/" + file);
+    const Outcome o = solveProblem(p.M, p.q);
+    EXPECT_EQ(statusName(o.result.status), std::string("Solved")) << file;
+    EXPECT_EQ(o.result.pivots, pivots) << file;
+    EXPECT_LE(o.result.error, 1e-12) << file;
+    EXPECT_GE(o.z.minCoeff(), 0.0) << file;
+  }
+}
+
 TEST(LcpCollectionDetails, Cps1SolutionOnTheSegment) {
   const Problem p = readLcpFile(dataPath("lcp_CPS_1.dat"));
   const Outcome o = solveProblem(p.M, p.q);

@@ -271,3 +271,47 @@ def test_libcosim_gives_the_same_outputs_as_fmpy():
     b = cosim.run_fmpy_like_libcosim(inputs_at, 40, 100_000, names)
     assert np.all(np.isfinite(a))
     assert np.array_equal(a, b), np.abs(a - b).max()
+
+
+def test_contact_method_parameter_selects_time_stepping():
+    """Rigid contacts by Moreau-Jean time stepping through the FMU: 1 ms runs with finite,
+    plausible outputs and differs from the compliant run (a different contact model)."""
+    ts = solo_run("ts", steps=10, parameters={"contact.method": "time-stepping"})
+    assert np.all(np.isfinite(ts))
+    assert ts[:, 0].min() >= 0.0 and ts[:, 0].max() < 3000.0
+    compliant = solo_run("cc", steps=10)
+    assert not np.array_equal(ts, compliant)
+
+
+def test_event_driven_storm_is_a_discard_with_the_reason():
+    """The event-driven method meets a runaway event rate on the drive (a result of the stability
+    study): the FMU reports it as fmi2Discard naming the rate, and the state can be restored."""
+    s = fmu.Slave("ed", parameters={"contact.method": "event-driven"})
+    s.initialize(inputs=INPUTS)
+    state = s.slave.getFMUState()
+    with pytest.raises(FMICallException) as e:
+        for k in range(10):
+            s.step(H, t=k * H)
+    assert e.value.status == 2
+    assert any("runaway events" in m and "per s" in m for m in s.errors()), s.errors()
+    s.slave.setFMUState(state)
+    s.slave.freeFMUState(state)
+    s.close()
+
+
+@pytest.mark.parametrize("name,value,text", [("contact.method", "rigid", "contact.method"),
+                                             ("chain.jointModel", "pinned", "chain.jointModel")])
+def test_invalid_contact_parameters_are_errors(name, value, text):
+    s = fmu.Slave("badcontact", parameters={name: value})
+    with pytest.raises(FMICallException):
+        s.initialize(inputs=INPUTS)
+    assert any(text in m and value in m for m in s.errors()), s.errors()
+    s.slave.freeInstance()
+
+
+def test_ideal_joints_with_compliant_contacts_is_an_error():
+    s = fmu.Slave("idealcompliant", parameters={"chain.jointModel": "ideal", "contact.method": "compliant"})
+    with pytest.raises(FMICallException):
+        s.initialize(inputs=INPUTS)
+    assert any("ideal" in m for m in s.errors()), s.errors()
+    s.slave.freeInstance()

@@ -1,0 +1,133 @@
+#include "nonsmooth/moreau_jean.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/ode_system.h"
+
+namespace chaindrive::ns {
+
+MoreauJean::MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s)
+    : sys_(sys), settings_(s), minv_(sys.inverseMass()), n_(sys.size()) {
+  if (!(s.step > 0.0)) throw std::invalid_argument("time-stepping needs a positive step");
+  if (!s.recordLcpDirectory.empty()) solver_.record(s.recordLcpDirectory, s.recordLcpCount);
+  q_.assign(n_, 0.0);
+  v_.assign(n_, 0.0);
+  qm_.assign(n_, 0.0);
+  h_.assign(n_, 0.0);
+  vfree_.assign(n_, 0.0);
+  vnew_.assign(n_, 0.0);
+  presc_.assign(n_, 0.0);
+  prescAcc_.assign(n_, 0.0);
+}
+
+void MoreauJean::reset(double t, const double* q, const double* v) {
+  t_ = t;
+  std::copy(q, q + n_, q_.begin());
+  std::copy(v, v + n_, v_.begin());
+  forces_.clear();
+  stuck_.clear();
+  // start on the constraints (a pre-loaded compliant state penetrates by micrometres)
+  projectPositions(sys_, t_, q_.data(), v_.data(), solver_);
+}
+
+void MoreauJean::advance(double tout) {
+  const double span = tout - t_;
+  if (span <= 0.0) return;
+  const long nSteps = std::max(1L, static_cast<long>(std::ceil(span / settings_.step * (1.0 - 1e-12))));
+  const double h = span / static_cast<double>(nSteps);
+  for (long k = 0; k < nSteps; ++k) {
+    step(h);
+    t_ = k + 1 == nSteps ? tout : t_ + h;
+  }
+}
+
+void MoreauJean::step(double h) {
+  const double tm = t_ + 0.5 * h;
+  for (int i = 0; i < n_; ++i) qm_[i] = q_[i] + 0.5 * h * v_[i];
+  sys_.forces(tm, qm_.data(), v_.data(), h_.data());
+  for (int i = 0; i < n_; ++i) vfree_[i] = v_[i] + h * minv_[i] * h_[i];
+  // prescribed degrees of freedom follow their motion
+  std::copy(vfree_.begin(), vfree_.end(), presc_.begin());
+  sys_.prescribed(t_ + h, presc_.data(), prescAcc_.data());
+  for (int i = 0; i < n_; ++i)
+    if (minv_[i] == 0.0) vfree_[i] = presc_[i];
+
+  // constraints at the midpoint; contacts predicted closed by the end of the step
+  double vmax = 0.0;
+  for (int i = 0; i < n_; ++i) vmax = std::max(vmax, std::fabs(v_[i]));
+  sys_.constraints(tm, qm_.data(), v_.data(), std::max(settings_.gapTolerance, 2.0 * h * vmax), false, cs_);
+  rows_.clear();
+  for (const Contact& c : cs_.contacts) {
+    const double gdot = c.wN.dot(v_.data());
+    if (c.gap + 0.5 * h * gdot > settings_.gapTolerance) continue;
+    ContactRow r;
+    r.contact = &c;
+    const bool stuck = std::binary_search(stuck_.begin(), stuck_.end(), c.id);
+    r.mu = settings_.staticFriction && stuck ? c.muStatic : c.mu;
+    r.kind = r.mu > 0.0 ? RowKind::Friction : RowKind::NormalOnly;
+    r.bN = c.wN.dot(vfree_.data()) + c.restitution * std::min(0.0, gdot);
+    r.bT = c.wT.dot(vfree_.data());
+    rows_.push_back(r);
+  }
+  bil_.clear();
+  bB_.clear();
+  for (const Bilateral& b : cs_.bilateral) {
+    bil_.push_back(&b);
+    bB_.push_back(b.w.dot(vfree_.data()) + 2.0 * b.g / h);
+  }
+  vnew_ = vfree_;
+  forces_.clear();
+  double contactWork = 0.0;  // work of the impulses on the relative motion
+  if (!rows_.empty() || !bil_.empty()) {
+    const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
+    countSolve(stats_, s);
+    if (!s.solved())
+      throw IntegrationError(t_, std::string("velocity LCP of size ") + std::to_string(s.size) + " not solved: " +
+                                     lcp::statusName(s.status));
+    for (std::size_t k = 0; k < rows_.size(); ++k) {
+      addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), vnew_.data());
+      addImpulse(rows_[k].contact->wT, s.fT[k], minv_.data(), vnew_.data());
+    }
+    for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), vnew_.data());
+    bilateralForces_.resize(bil_.size());
+    for (std::size_t k = 0; k < bil_.size(); ++k) bilateralForces_[k] = s.fB[k] / h;
+    // prescribed degrees of freedom are not moved by impulses (minv = 0)
+    stuck_.clear();
+    for (std::size_t k = 0; k < rows_.size(); ++k) {
+      const Contact& c = *rows_[k].contact;
+      const double uN = 0.5 * (c.wN.dot(v_.data()) + c.wN.dot(vnew_.data()));
+      const double uT = 0.5 * (c.wT.dot(v_.data()) + c.wT.dot(vnew_.data()));
+      contactWork += s.fN[k] * uN + s.fT[k] * uT;
+      if (s.sticking[k]) stuck_.push_back(c.id);
+      forces_.push_back(ContactForce{c.tag, c.id, s.fN[k] / h, s.fT[k] / h});
+    }
+    for (std::size_t k = 0; k < bil_.size(); ++k)
+      contactWork += s.fB[k] * 0.5 * (bil_[k]->w.dot(v_.data()) + bil_[k]->w.dot(vnew_.data()));
+    std::sort(stuck_.begin(), stuck_.end());
+  } else {
+    stuck_.clear();
+  }
+  // energy: smooth input and damping at the midpoint; impulses: their work on the relative
+  // motion is dissipated, except what they do on prescribed degrees of freedom (the drive's work)
+  double drive = 0.0;
+  for (std::size_t k = 0; k < rows_.size(); ++k) {
+    const Contact& c = *rows_[k].contact;
+    const ConstraintSolution& s = solver_.solution();
+    for (const SparseColumn* col : {&c.wN, &c.wT}) {
+      const double f = col == &c.wN ? s.fN[k] : s.fT[k];
+      for (int j = 0; j < col->n; ++j)
+        if (minv_[col->idx[j]] == 0.0) drive -= f * col->val[j] * 0.5 * (v_[col->idx[j]] + vnew_[col->idx[j]]);
+    }
+  }
+  for (int i = 0; i < n_; ++i) h_[i] = 0.5 * (v_[i] + vnew_[i]);  // mean velocity (reuse h_)
+  inputWork_ += h * sys_.inputPower(tm, qm_.data(), h_.data()) + drive;
+  dissipated_ += h * sys_.dissipatedPower(tm, qm_.data(), h_.data()) - contactWork;
+  for (int i = 0; i < n_; ++i) q_[i] = qm_[i] + 0.5 * h * vnew_[i];
+  v_.swap(vnew_);
+  ++stats_.steps;
+  std::string why;
+  if (!sys_.healthy(t_ + h, q_.data(), v_.data(), why)) throw IntegrationError(t_ + h, why);
+}
+
+}  // namespace chaindrive::ns
