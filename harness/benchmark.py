@@ -175,10 +175,7 @@ def main(argv=None):
     if best:
         emit(f"fastest integrator at 3000 rpm whose tensioner-force RMS changes by less than 1 % when its "
              f"step/tolerance is halved: {best[0]}, {best[1]:.2f} CPU s per simulated s (target: at most 10)")
-    out = pathlib.Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines) + "\n")
-    print(f"\nwritten: {out}")
+    runs.write_lines(args.out, lines)
 
 
 if __name__ == "__main__":

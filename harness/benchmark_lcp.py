@@ -108,10 +108,7 @@ def main(argv=None):
         if ratios:
             ratios.sort()
             emit(f"median time ratio Siconos/ours over the problems with n >= 20: {ratios[len(ratios) // 2]:.2f}")
-    out = pathlib.Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text("\n".join(lines) + "\n")
-    print(f"\nwritten: {out}")
+    runs.write_lines(args.out, lines)
 
 
 if __name__ == "__main__":

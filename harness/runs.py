@@ -64,6 +64,15 @@ def parse_summary(text):
     return out
 
 
+def write_lines(path, lines):
+    """Writes a report (lines of text) to path, creating its folder; prints where."""
+    import pathlib
+    out = pathlib.Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("\n".join(lines) + "\n")
+    print(f"\nwritten: {out}")
+
+
 def machine():
     """One line describing the machine, for benchmark reports."""
     cpu = platform.processor() or "unknown cpu"

@@ -1,6 +1,7 @@
 #include "contact_kinematics.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace chaindrive {
 
@@ -136,6 +137,20 @@ void detectContacts(const Model& m, Data& d, double margin) {
     }
   }
   d.nContacts = count;
+}
+
+bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, std::string& why) {
+  int worst = -1;
+  for (int k = 0; k < n; ++k)
+    if (contacts[k].gap < -limit && (worst < 0 || contacts[k].gap < contacts[worst].gap)) worst = k;
+  if (worst < 0) return false;
+  const ContactPoint& c = contacts[worst];
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "tunnelling: %s contact of link %d penetrates by %.3f mm (limit %.3f mm) at t = %.6f s",
+                c.kind == ContactPoint::Kind::RollerSprocket ? "roller-sprocket" : "plate-guide", c.link, -c.gap * 1e3,
+                limit * 1e3, t);
+  why = buf;
+  return true;
 }
 
 }  // namespace chaindrive

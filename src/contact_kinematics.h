@@ -3,6 +3,8 @@
 // paper's eq. (1) (generalized coordinates: link x, y, gamma and the rotor angle).
 #pragma once
 
+#include <string>
+
 #include "data.h"
 #include "model.h"
 
@@ -22,6 +24,11 @@ bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, c
 /// Plate edge of link `link` against face `face` of a guide turned by `angle` about its pivot.
 bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
                           double rate, double margin, ContactPoint& cp);
+
+/// Tunnelling check: true if some contact of `contacts[0..n)` penetrates deeper than `limit`
+/// [m] (a roller through a tooth, a link through a guide face); `why` then names the contact,
+/// its depth, the limit and the time.
+bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, std::string& why);
 
 /// Finds every contact with gap below margin into d.contacts[0 .. d.nContacts). Fixed order:
 /// rollers by link, end and sprocket; then plates by guide, link and face.

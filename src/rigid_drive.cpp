@@ -28,8 +28,8 @@ bool sameContact(const Model& m, const ContactPoint& id, const Data& d, double m
 }  // namespace
 
 RigidContactDrive::RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints,
-                                     double blowUpDeformation)
-    : model_(std::move(m)), in_(in), ideal_(idealJoints), blowUp_(blowUpDeformation), d_(*model_), dp_(*model_) {
+                                     const HealthLimits& health)
+    : model_(std::move(m)), in_(in), ideal_(idealJoints), health_(health), d_(*model_), dp_(*model_) {
   const Model& md = *model_;
   n_ = 3 * md.chain.links + static_cast<int>(md.rotors.size());
   minv_.assign(n_, 0.0);
@@ -207,7 +207,7 @@ bool RigidContactDrive::healthy(double t, const double* q, const double* v, std:
   const Model& m = *model_;
   pack(q, v, y_.data());
   evaluateKinematics(m, d_, y_.data());
-  const double limit = blowUp_ * m.chain.pitch;
+  const double limit = health_.blowUpDeformation * m.chain.pitch;
   for (int j = 0; j < m.chain.links; ++j) {
     const double dist = norm(d_.links[j].front - d_.links[(j + 1) % m.chain.links].rear);
     if (!(dist <= limit)) {
@@ -216,7 +216,9 @@ bool RigidContactDrive::healthy(double t, const double* q, const double* v, std:
       return false;
     }
   }
-  return true;
+  // the contacts of the last constraint evaluation (within the step)
+  return !deepPenetration(last_.data(), static_cast<int>(last_.size()),
+                          health_.tunnellingDepth * m.chain.rollerRadius, t, why);
 }
 
 RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const std::string& method,
@@ -230,7 +232,7 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
     ms.gapTolerance = s.gapTolerance;
     ms.recordLcpDirectory = s.recordLcpDirectory;
     ms.recordLcpCount = s.recordLcpCount;
-    mj_ = std::make_unique<ns::MoreauJean>(*sys_, ms);
+    ns_ = std::make_unique<ns::MoreauJean>(*sys_, ms);
   } else if (method == "event-driven") {
     ns::EventDrivenSettings es;
     es.rtol = s.rtol;
@@ -243,7 +245,7 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
     es.gapTolerance = s.gapTolerance;
     es.recordLcpDirectory = s.recordLcpDirectory;
     es.recordLcpCount = s.recordLcpCount;
-    ed_ = std::make_unique<ns::EventDriven>(*sys_, es);
+    ns_ = std::make_unique<ns::EventDriven>(*sys_, es);
   } else {
     throw std::invalid_argument("contact method '" + method + "' is unknown; allowed: compliant, event-driven, time-stepping");
   }
@@ -252,28 +254,16 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
 void RigidIntegrator::reset(double t0, const double* y0) {
   sys_->unpack(y0, q_.data(), v_.data());
   const Model& m = sys_->model();
-  if (mj_) {
-    mj_->reset(t0, q_.data(), v_.data());
-    mj_->setEnergy(y0[m.stateInputWork], y0[m.stateDissipated]);
-  } else {
-    ed_->setEnergy(y0[m.stateInputWork], y0[m.stateDissipated]);
-    ed_->reset(t0, q_.data(), v_.data());
-  }
+  ns_->setEnergy(y0[m.stateInputWork], y0[m.stateDissipated]);
+  ns_->reset(t0, q_.data(), v_.data());
 }
 
 void RigidIntegrator::advance(double tout, double* y) {
   const Model& m = sys_->model();
-  if (mj_) {
-    mj_->advance(tout);
-    sys_->pack(mj_->q().data(), mj_->v().data(), y);
-    y[m.stateInputWork] = mj_->inputWork();
-    y[m.stateDissipated] = mj_->dissipated();
-  } else {
-    ed_->advance(tout);
-    sys_->pack(ed_->q().data(), ed_->v().data(), y);
-    y[m.stateInputWork] = ed_->inputWork();
-    y[m.stateDissipated] = ed_->dissipated();
-  }
+  ns_->advance(tout);
+  sys_->pack(ns_->q().data(), ns_->v().data(), y);
+  y[m.stateInputWork] = ns_->inputWork();
+  y[m.stateDissipated] = ns_->dissipated();
 }
 
 IntegratorStats RigidIntegrator::stats() const {
@@ -285,13 +275,13 @@ IntegratorStats RigidIntegrator::stats() const {
 }
 
 const std::vector<double>& RigidIntegrator::jointForces() const {
-  return mj_ ? mj_->bilateralForces() : ed_->bilateralForces();
+  return ns_->bilateralForces();
 }
 
-const ns::NsStats& RigidIntegrator::contactStats() const { return mj_ ? mj_->stats() : ed_->stats(); }
+const ns::NsStats& RigidIntegrator::contactStats() const { return ns_->stats(); }
 
 void RigidIntegrator::contactPoints(std::vector<ContactPoint>& out) const {
-  sys_->contactPoints(mj_ ? mj_->contactForces() : ed_->contactForces(), out);
+  sys_->contactPoints(ns_->contactForces(), out);
 }
 
 }  // namespace chaindrive

@@ -19,7 +19,7 @@ namespace chaindrive {
 
 class RigidContactDrive : public ns::NonsmoothSystem {
  public:
-  RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints, double blowUpDeformation);
+  RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints, const HealthLimits& health);
   int size() const override { return n_; }
   const std::vector<double>& inverseMass() const override { return minv_; }
   void prescribed(double t, double* v, double* a) const override;
@@ -43,7 +43,7 @@ class RigidContactDrive : public ns::NonsmoothSystem {
   std::shared_ptr<const Model> model_;
   const InputSignal& in_;
   bool ideal_;
-  double blowUp_;
+  HealthLimits health_;
   int n_;
   std::vector<double> minv_, y_, yp_;
   Data d_, dp_;                          // evaluation and perturbed evaluation (wbar)
@@ -68,8 +68,7 @@ class RigidIntegrator : public Integrator {
  private:
   std::shared_ptr<RigidContactDrive> sys_;
   std::string method_;
-  std::unique_ptr<ns::MoreauJean> mj_;
-  std::unique_ptr<ns::EventDriven> ed_;
+  std::unique_ptr<ns::NonsmoothMethod> ns_;
   std::vector<double> q_, v_;
 };
 

@@ -7,8 +7,8 @@
 
 namespace chaindrive {
 
-DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, double blowUpDeformation)
-    : model_(std::move(m)), in_(in), data_(*model_), jac_(*model_), blowUp_(blowUpDeformation) {
+DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, const HealthLimits& health)
+    : model_(std::move(m)), in_(in), data_(*model_), jac_(*model_), health_(health) {
   const Model& md = *model_;
   velocityOf_.assign(md.nStates, -1);
   isVelocity_.assign(md.nStates, 0);
@@ -81,7 +81,7 @@ bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept 
       why = "non-finite state (component " + std::to_string(i) + ")";
       return false;
     }
-  const double limit = blowUp_ * m.chain.pitch;
+  const double limit = health_.blowUpDeformation * m.chain.pitch;
   for (int j = 0; j < m.chain.links; ++j) {
     const double dist = data_.joints[j].deformation;
     if (!(dist <= limit)) {
@@ -90,7 +90,7 @@ bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept 
       return false;
     }
   }
-  return true;
+  return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.rollerRadius, t, why);
 }
 
 Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
@@ -105,10 +105,10 @@ Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptio
     if (joints == "ideal")
       throw std::invalid_argument("ideal joints need a rigid-contact method (event-driven or time-stepping); with "
                                   "compliant contacts use journal-bearing joints");
-    system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.blowUpDeformation);
+    system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.health);
     integrator_ = makeIntegrator(*system_, options_.integrator);
   } else if (contactMethod_ == "event-driven" || contactMethod_ == "time-stepping") {
-    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.blowUpDeformation);
+    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.health);
     auto ri = std::make_unique<RigidIntegrator>(rigid_, contactMethod_, options_.integrator);
     rigidIntegrator_ = ri.get();
     integrator_ = std::move(ri);

@@ -22,14 +22,14 @@ struct SimulationOptions {
   std::string contactMethod;          // "", "compliant", "event-driven", "time-stepping" ("": the drive's)
   std::string jointModel;             // "", "journal-bearing", "ideal" ("": the drive's)
   PreloadOptions preload;
-  double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch is a blow-up
+  HealthLimits health;              // blow-up and tunnelling detection
   int monitoredLink = -1;           // -1: the model's
 };
 
 /// The compliant-contact chain drive as an ODE system for the integrators.
 class DriveSystem : public OdeSystem {
  public:
-  DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, double blowUpDeformation);
+  DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, const HealthLimits& health);
   int size() const override { return model_->nStates; }
   int rhs(double t, const double* y, double* ydot) noexcept override;
   bool hasJacobian() const override { return true; }
@@ -52,7 +52,7 @@ class DriveSystem : public OdeSystem {
   JacobianAssembler jac_;
   std::vector<int> velocityOf_;
   std::vector<char> isVelocity_;
-  double blowUp_;
+  HealthLimits health_;
   std::string lastError_;
 };
 

@@ -13,10 +13,13 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "drive_description.h"
 #include "inputs.h"
 #include "model.h"
 #include "simulation.h"
+#include "state_file.h"
 
 using namespace chaindrive;
 
@@ -44,6 +47,7 @@ void usage() {
       "                          method (default 1e-5)\n"
       "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6)\n"
       "  --max-step S            largest step of adaptive integrators [s] (default unlimited)\n"
+      "  --min-step S            adaptive integrators: a smaller step is a step-size collapse [s] (1e-10)\n"
       "  --output-step S         output interval [s] (default 1e-4)\n"
       "  --load NAME=TORQUE      constant load torque [N m] on a free sprocket (+ opposes rotation)\n"
       "  --crank-vibration K:A   rotational vibration of engine order K (per crank rev) with angle\n"
@@ -58,6 +62,10 @@ void usage() {
       "                          and every LCP not solved (lcp_failed_K.dat)\n"
       "  --no-preload            start from the unloaded nominal pose\n"
       "  --out FILE.csv          write outputs (default: no file)\n"
+      "  --initial-state FILE    start from a saved state (its time and state vector; no preload);\n"
+      "                          --cycles/--duration then count from that time\n"
+      "  --save-state FILE       save the final state (for --initial-state)\n"
+      "  --summary FILE.json     write the run's figures (CPU time, counters, failure and its kind)\n"
       "  --quiet                 print the summary only\n",
       names.c_str());
 }
@@ -65,7 +73,7 @@ void usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string drive, inputsCsv, outPath;
+  std::string drive, inputsCsv, outPath, initialState, saveState, summaryPath;
   double rpm = 3000.0, cycles = 2.0, duration = -1.0, outputStep = 1e-4;
   SimulationOptions opt;
   std::vector<std::pair<std::string, double>> loads;
@@ -104,9 +112,13 @@ int main(int argc, char** argv) {
       else if (a == "--rtol") opt.integrator.rtol = num(next());
       else if (a == "--step") opt.integrator.fixedStep = num(next());
       else if (a == "--max-step") opt.integrator.maxStep = num(next());
+      else if (a == "--min-step") opt.integrator.minStep = num(next());
       else if (a == "--output-step") outputStep = num(next());
       else if (a == "--inputs") inputsCsv = next();
       else if (a == "--out") outPath = next();
+      else if (a == "--initial-state") initialState = next();
+      else if (a == "--save-state") saveState = next();
+      else if (a == "--summary") summaryPath = next();
       else if (a == "--link") opt.monitoredLink = static_cast<int>(num(next()));
       else if (a == "--no-preload") opt.preload.enabled = false;
       else if (a == "--quiet") quiet = true;
@@ -162,11 +174,21 @@ int main(int argc, char** argv) {
     }
     Simulation sim(model, opt, std::move(in));
     const double cpu0 = cpuSeconds();
-    sim.start(0.0);
+    double t0 = 0.0;
+    if (!initialState.empty()) {
+      const StateSnapshot snap = readStateFile(initialState, m);
+      t0 = snap.time;
+      sim.startFrom(t0, snap.y);
+    } else {
+      sim.start(0.0);
+    }
     const double cpuPreload = cpuSeconds() - cpu0;
     if (!quiet) {
       std::printf("drive: %s (%d links, %zu rotors, %d states)\n", m.name.c_str(), m.chain.links, m.rotors.size(), m.nStates);
-      std::printf("start: %s, %.3f s CPU\n", sim.preloadReport().message.c_str(), cpuPreload);
+      if (initialState.empty())
+        std::printf("start: %s, %.3f s CPU\n", sim.preloadReport().message.c_str(), cpuPreload);
+      else
+        std::printf("start: state of %s at t = %.6f s\n", initialState.c_str(), t0);
     }
     std::ofstream csv;
     if (!outPath.empty()) {
@@ -195,16 +217,20 @@ int main(int argc, char** argv) {
     int status = 0;
     std::string failure;
     double tReached = 0.0;
+    std::string failureKindName;
+    double failureTime = 0.0;
     for (long k = 1; k <= nOut; ++k) {
-      const double t = tEnd * static_cast<double>(k) / static_cast<double>(nOut);
+      const double t = t0 + tEnd * static_cast<double>(k) / static_cast<double>(nOut);
       try {
         sim.advanceTo(t);
       } catch (const IntegrationError& e) {
         failure = e.what();
+        failureKindName = e.kind();
+        failureTime = e.time();
         status = 3;
         break;
       }
-      tReached = t;
+      tReached = t - t0;
       write(sim.outputs());
     }
     const double cpu = cpuSeconds() - cpuRun0;
@@ -226,6 +252,42 @@ int main(int argc, char** argv) {
                 "convergence failures %lld, last step %.3e s\n",
                 st.steps, st.rhsEvaluations, sim.rhsEvaluations(), st.jacobianEvaluations, st.errorTestFailures,
                 st.convergenceFailures, st.lastStep);
+    if (!summaryPath.empty()) {
+      nlohmann::json j;
+      j["status"] = status == 0 ? "ok" : "failed";
+      j["contactMethod"] = sim.contactMethod();
+      j["method"] = method;
+      j["rpm"] = rpm;
+      j["startTime"] = t0;
+      j["simulated"] = tReached;
+      j["requested"] = tEnd;
+      j["cpuSeconds"] = cpu;
+      if (tReached > 0) j["cpuPerSimulatedSecond"] = cpu / tReached;
+      j["steps"] = st.steps;
+      j["rhsEvaluations"] = sim.rhsEvaluations();
+      j["jacobianEvaluations"] = st.jacobianEvaluations;
+      j["errorTestFailures"] = st.errorTestFailures;
+      j["convergenceFailures"] = st.convergenceFailures;
+      if (status != 0) {
+        j["failure"] = failure;
+        j["failureKind"] = failureKindName;
+        j["failureTime"] = failureTime;
+      }
+      if (const ns::NsStats* cs = sim.contactStats()) {
+        j["events"] = cs->events;
+        j["impacts"] = cs->impacts;
+        j["lcpSolves"] = cs->lcpSolves;
+        j["lcpSizeMean"] = cs->lcpSolves ? static_cast<double>(cs->lcpSizeSum) / static_cast<double>(cs->lcpSolves) : 0.0;
+        j["lcpSizeMax"] = cs->lcpSizeMax;
+        j["pivots"] = cs->pivots;
+        j["regularizedLcps"] = cs->regularizedLcps;
+        j["contactSteps"] = cs->steps;
+      }
+      std::ofstream sj(summaryPath);
+      if (!sj) throw std::runtime_error("cannot write " + summaryPath);
+      sj << j.dump(1) << "\n";
+    }
+    if (status == 0 && !saveState.empty()) writeStateFile(saveState, m, StateSnapshot{sim.time(), sim.state()});
     if (status == 0 && !quiet) {
       const Outputs& o = sim.outputs();
       std::printf("final: tensioner %.2f N, tight span %.2f N, slack span %.2f N, crank torque %.3f N m, contacts %d\n",

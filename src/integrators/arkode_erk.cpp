@@ -37,6 +37,7 @@ class ArkodeErk : public Integrator {
       fillAbsoluteTolerances(sys_, settings_.rtol, atol_.v);
       check(ERKStepSVtolerances(mem_, settings_.rtol, atol_.v), "ERKStepSVtolerances");
       check(ERKStepSetMaxNumSteps(mem_, settings_.maxStepsPerOutput), "ERKStepSetMaxNumSteps");
+      if (!fixed_ && settings_.minStep > 0.0) check(ERKStepSetMinStep(mem_, settings_.minStep), "ERKStepSetMinStep");
       if (settings_.maxStep > 0.0) check(ERKStepSetMaxStep(mem_, settings_.maxStep), "ERKStepSetMaxStep");
       if (fixed_) check(ERKStepSetFixedStep(mem_, settings_.fixedStep), "ERKStepSetFixedStep");
     } else {

@@ -2,6 +2,7 @@
 // element Jacobian) or a banded solver (CVODE's difference-quotient band Jacobian, which drops
 // the couplings outside the band: an approximate Newton matrix).
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -50,6 +51,7 @@ class CvodeBdf : public Integrator {
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * sys_.size());
     t_ = t0;
+    windowSteps_ = windowFails_ = 0;  // CVodeReInit restarts the counters
     if (!initialized_) {
       check(CVodeInit(mem_, chaindriveRhs, t0, y_.v), "CVodeInit");
       check(CVodeSetUserData(mem_, &cb_), "CVodeSetUserData");
@@ -71,6 +73,7 @@ class CvodeBdf : public Integrator {
         check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
       }
       check(CVodeSetMaxNumSteps(mem_, settings_.maxStepsPerOutput), "CVodeSetMaxNumSteps");
+      if (settings_.minStep > 0.0) check(CVodeSetMinStep(mem_, settings_.minStep), "CVodeSetMinStep");
       if (settings_.maxStep > 0.0) check(CVodeSetMaxStep(mem_, settings_.maxStep), "CVodeSetMaxStep");
       check(CVodeSetStabLimDet(mem_, SUNTRUE), "CVodeSetStabLimDet");
       initialized_ = true;
@@ -98,6 +101,7 @@ class CvodeBdf : public Integrator {
     std::memcpy(y, y_.data(), sizeof(double) * sys_.size());
     std::string why;
     if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
+    checkNewtonFailures(tout);
   }
 
   IntegratorStats stats() const override {
@@ -117,6 +121,27 @@ class CvodeBdf : public Integrator {
   }
 
  private:
+  // Newton iterations that keep failing (a poor Newton matrix, as the band solver's) make CVODE
+  // cut the step again and again without an error: detected as the ratio of convergence failures
+  // to steps over windows of at least 200 steps.
+  void checkNewtonFailures(double t) {
+    long steps = 0, fails = 0;
+    if (CVodeGetNumSteps(mem_, &steps) != 0 || CVodeGetNumNonlinSolvConvFails(mem_, &fails) != 0) return;
+    const long ds = steps - windowSteps_, df = fails - windowFails_;
+    if (ds < 200) return;
+    if (static_cast<double>(df) > settings_.maxConvergenceFailureRatio * static_cast<double>(ds)) {
+      double h = 0.0;
+      CVodeGetLastStep(mem_, &h);
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "Newton failure (CV_CONV_FAILURE repeatedly): %ld convergence failures in %ld steps, step size "
+                    "%.3g s",
+                    df, ds, h);
+      throw IntegrationError(t, buf);
+    }
+    windowSteps_ = steps;
+    windowFails_ = fails;
+  }
   void check(int flag, const char* what) {
     if (flag < 0) throw std::runtime_error(std::string(what) + " failed (flag " + std::to_string(flag) + ")");
   }
@@ -132,6 +157,7 @@ class CvodeBdf : public Integrator {
   bool initialized_ = false;
   double t_ = 0.0;
   double initialStep_ = 0.0;
+  long windowSteps_ = 0, windowFails_ = 0;
 };
 
 }  // namespace

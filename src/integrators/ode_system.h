@@ -45,6 +45,9 @@ struct IntegratorSettings {
   std::string erkTable = "ARKODE_DORMAND_PRINCE_7_4_5";
   bool stopAtOutputs = false;         // never step past an output time (co-simulation)
   long maxStepsPerOutput = 5000000;
+  double minStep = 1e-10;             // adaptive: a step size below this is a step-size collapse [s]
+  double maxConvergenceFailureRatio = 0.5;  // BDF: more Newton convergence failures per step (over
+                                            // any 200 steps) is a Newton failure
   // rigid-contact methods
   double reboundThreshold = 0.05;     // [m/s] event driven: slower rebounds close the contact
   double maxEventsPerSecond = 2e5;    // event driven: a higher rate is a runaway-event failure
@@ -61,6 +64,30 @@ struct IntegratorStats {
 };
 
 /// Thrown by an integrator when it cannot continue: the time reached and the reason.
+/// What counts as a physically failed state (checked after steps, reported as IntegrationError).
+struct HealthLimits {
+  double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch: blow-up
+  double tunnellingDepth = 0.5;     // a contact deeper than this fraction of the roller radius: tunnelling
+};
+
+/// The kind of a numerical failure, from its reason: "runaway-events", "tunnelling", "blow-up",
+/// "non-finite", "lcp-ray-termination", "lcp-numerical-failure", "lcp-iteration-limit",
+/// "newton-failure" (corrector or linear solver of an implicit method), "step-size-collapse"
+/// (error-test failures or too many steps: the step size went to zero), or "other".
+inline const char* failureKind(const std::string& reason) {
+  auto has = [&](const char* s) { return reason.find(s) != std::string::npos; };
+  if (has("runaway events")) return "runaway-events";
+  if (has("tunnelling")) return "tunnelling";
+  if (has("blow-up")) return "blow-up";
+  if (has("non-finite") || has("RHSFUNC")) return "non-finite";
+  if (has("RayTermination")) return "lcp-ray-termination";
+  if (has("NumericalFailure")) return "lcp-numerical-failure";
+  if (has("IterationLimit")) return "lcp-iteration-limit";
+  if (has("CONV_FAIL") || has("LSETUP_FAIL") || has("LSOLVE_FAIL")) return "newton-failure";
+  if (has("TOO_MUCH_WORK") || has("ERR_FAIL") || has("TOO_CLOSE")) return "step-size-collapse";
+  return "other";
+}
+
 class IntegrationError : public std::exception {
  public:
   IntegrationError(double t, std::string reason)
@@ -68,6 +95,7 @@ class IntegrationError : public std::exception {
   const char* what() const noexcept override { return what_.c_str(); }
   double time() const { return time_; }
   const std::string& reason() const { return reason_; }
+  const char* kind() const { return failureKind(reason_); }
 
  private:
   double time_;

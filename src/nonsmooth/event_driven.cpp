@@ -44,9 +44,12 @@ constexpr long long kEventBatch = 100;  // the event rate is checked over batche
 }  // namespace
 
 EventDriven::EventDriven(NonsmoothSystem& sys, const EventDrivenSettings& s)
-    : sys_(sys), settings_(s), minv_(sys.inverseMass()), n_(sys.size()), sun_(std::make_unique<Sundials>()) {
-  q_.assign(n_, 0.0);
-  v_.assign(n_, 0.0);
+    : NonsmoothMethod(sys.size()),
+      sys_(sys),
+      settings_(s),
+      minv_(sys.inverseMass()),
+      n_(sys.size()),
+      sun_(std::make_unique<Sundials>()) {
   h_.assign(n_, 0.0);
   afree_.assign(n_, 0.0);
   acc_.assign(n_, 0.0);

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "nonsmooth/formulations.h"
-#include "nonsmooth/moreau_jean.h"
+#include "nonsmooth/method.h"
 #include "nonsmooth/system.h"
 
 namespace chaindrive::ns {
@@ -43,29 +43,17 @@ struct EventDrivenSettings {
   std::string erkTable = "ARKODE_DORMAND_PRINCE_7_4_5";
 };
 
-class EventDriven {
+class EventDriven : public NonsmoothMethod {
  public:
   EventDriven(NonsmoothSystem& sys, const EventDrivenSettings& s);
-  ~EventDriven();
+  ~EventDriven() override;
   EventDriven(const EventDriven&) = delete;
   EventDriven& operator=(const EventDriven&) = delete;
 
   /// Starts at (t, q, v): classifies the contacts (closed where the gap is within tolerance and
   /// not separating; an impact first if some are approaching).
-  void reset(double t, const double* q, const double* v);
-  /// Integrates to tout; throws IntegrationError with the time and the reason on failure.
-  void advance(double tout);
-
-  double time() const { return t_; }
-  const std::vector<double>& q() const { return q_; }
-  const std::vector<double>& v() const { return v_; }
-  const NsStats& stats() const { return stats_; }
-  const std::vector<ContactForce>& contactForces() const { return forces_; }
-  /// Bilateral constraint forces at the current state, in the system's order.
-  const std::vector<double>& bilateralForces() const { return bilateralForces_; }
-  double inputWork() const { return inputWork_; }
-  double dissipated() const { return dissipated_; }
-  void setEnergy(double input, double dissipated) { inputWork_ = input; dissipated_ = dissipated; }
+  void reset(double t, const double* q, const double* v) override;
+  void advance(double tout) override;
 
   // for the C callbacks
   int rhs(double t, const double* y, double* ydot) noexcept;
@@ -91,8 +79,7 @@ class EventDriven {
   EventDrivenSettings settings_;
   const std::vector<double>& minv_;
   int n_;
-  double t_ = 0.0;
-  std::vector<double> q_, v_, h_, afree_, acc_, presc_, prescAcc_;
+  std::vector<double> h_, afree_, acc_, presc_, prescAcc_;
   std::vector<Closed> closed_;  // sorted by id
   std::vector<long long> sliding_;   // ids with a slip-to-stick root, in root order
   std::vector<long long> sticking_;  // ids with a stick-to-slip root, after the sliding ones
@@ -101,10 +88,6 @@ class EventDriven {
   std::vector<ContactRow> rows_;
   std::vector<const Bilateral*> bil_;
   std::vector<double> bB_;
-  std::vector<ContactForce> forces_;
-  std::vector<double> bilateralForces_;
-  NsStats stats_;
-  double inputWork_ = 0.0, dissipated_ = 0.0;
   double eventWindowStart_ = 0.0;
   long long eventWindowCount_ = 0;
   std::string lastFailure_;

@@ -8,11 +8,9 @@
 namespace chaindrive::ns {
 
 MoreauJean::MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s)
-    : sys_(sys), settings_(s), minv_(sys.inverseMass()), n_(sys.size()) {
+    : NonsmoothMethod(sys.size()), sys_(sys), settings_(s), minv_(sys.inverseMass()), n_(sys.size()) {
   if (!(s.step > 0.0)) throw std::invalid_argument("time-stepping needs a positive step");
   if (!s.recordLcpDirectory.empty()) solver_.record(s.recordLcpDirectory, s.recordLcpCount);
-  q_.assign(n_, 0.0);
-  v_.assign(n_, 0.0);
   qm_.assign(n_, 0.0);
   h_.assign(n_, 0.0);
   vfree_.assign(n_, 0.0);

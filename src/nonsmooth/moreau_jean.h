@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "nonsmooth/formulations.h"
+#include "nonsmooth/method.h"
 #include "nonsmooth/system.h"
 
 namespace chaindrive::ns {
@@ -29,30 +30,13 @@ struct MoreauJeanSettings {
   int recordLcpCount = 0;
 };
 
-/// Last step's contact forces (impulse / h) by the system's contact tag.
-struct ContactForce {
-  int tag = -1;
-  long long id = 0;
-  double fN = 0.0, fT = 0.0;
-};
-
-class MoreauJean {
+/// Forces (contactForces, bilateralForces) are the last step's impulses divided by its length.
+class MoreauJean : public NonsmoothMethod {
  public:
   MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s);
-  void reset(double t, const double* q, const double* v);
-  /// Steps to tout; throws IntegrationError with the time and the reason on failure.
-  void advance(double tout);
-
-  double time() const { return t_; }
-  const std::vector<double>& q() const { return q_; }
-  const std::vector<double>& v() const { return v_; }
-  const NsStats& stats() const { return stats_; }
-  const std::vector<ContactForce>& contactForces() const { return forces_; }
-  /// Last step's bilateral constraint forces (impulse / h), in the system's order.
-  const std::vector<double>& bilateralForces() const { return bilateralForces_; }
-  double inputWork() const { return inputWork_; }
-  double dissipated() const { return dissipated_; }
-  void setEnergy(double input, double dissipated) { inputWork_ = input; dissipated_ = dissipated; }
+  void reset(double t, const double* q, const double* v) override;
+  /// Steps to tout (the interval divided into equal steps of at most the step setting).
+  void advance(double tout) override;
 
  private:
   void step(double h);
@@ -61,18 +45,13 @@ class MoreauJean {
   MoreauJeanSettings settings_;
   const std::vector<double>& minv_;
   int n_;
-  double t_ = 0.0;
-  std::vector<double> q_, v_, qm_, h_, vfree_, vnew_, presc_, prescAcc_;
+  std::vector<double> qm_, h_, vfree_, vnew_, presc_, prescAcc_;
   ConstraintSet cs_;
   ConstraintSolver solver_;
   std::vector<ContactRow> rows_;
   std::vector<const Bilateral*> bil_;
   std::vector<double> bB_;
   std::vector<long long> stuck_;      // ids of contacts that stuck in the last step (sorted)
-  std::vector<ContactForce> forces_;
-  std::vector<double> bilateralForces_;
-  NsStats stats_;
-  double inputWork_ = 0.0, dissipated_ = 0.0;
 };
 
 }  // namespace chaindrive::ns

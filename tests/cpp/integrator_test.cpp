@@ -13,18 +13,6 @@ using namespace chaindrive::test;
 
 namespace {
 
-std::shared_ptr<const Model> defaultModel() {
-  static const std::shared_ptr<const Model> m = std::make_shared<const Model>(assemble(defaultDriveDescription()));
-  return m;
-}
-
-std::unique_ptr<InputSignal> loads(const Model& m, double rpm) {
-  auto in = std::make_unique<HarmonicInputs>(m, rpm * 2.0 * kPi / 60.0);
-  in->setLoad(m.rotorIndex("camshaftIntake"), 3.0);
-  in->setLoad(m.rotorIndex("camshaftExhaust"), 3.0);
-  return in;
-}
-
 // Samples of one output (by member pointer) of a 3000 rpm run with constant camshaft loads.
 std::vector<double> series(const std::string& method, double rtolOrStep, double tEnd, int n,
                            double (*get)(const Outputs&)) {
@@ -33,7 +21,7 @@ std::vector<double> series(const std::string& method, double rtolOrStep, double 
   opt.integrator.method = method;
   if (method.rfind("fixed", 0) == 0 || method == "arkode-erk-fixed") opt.integrator.fixedStep = rtolOrStep;
   else opt.integrator.rtol = rtolOrStep;
-  Simulation sim(m, opt, loads(*m, 3000.0));
+  Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   std::vector<double> out;
   for (int k = 1; k <= n; ++k) {
@@ -58,7 +46,7 @@ TEST(Integrators, UnknownNameListsTheKnownOnes) {
   SimulationOptions opt;
   opt.integrator.method = "rk45";
   try {
-    Simulation sim(m, opt, loads(*m, 1000.0));
+    Simulation sim(m, opt, constantLoads(*m, 1000.0));
     FAIL() << "expected an error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("fixed-verlet"), std::string::npos) << e.what();
@@ -72,7 +60,7 @@ TEST(Integrators, BlowUpIsDetectedAndReported) {
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
   opt.integrator.fixedStep = 8e-6;
-  Simulation sim(m, opt, loads(*m, 3000.0));
+  Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   try {
     for (int k = 1; k <= 100; ++k) sim.advanceTo(1e-4 * k);
@@ -93,7 +81,7 @@ TEST(Integrators, SolverFailureCarriesTheFlagAndTime) {
   opt.integrator.method = "cvode-bdf-klu";
   opt.integrator.rtol = 1e-6;
   opt.integrator.maxStepsPerOutput = 20;
-  Simulation sim(m, opt, loads(*m, 3000.0));
+  Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   try {
     sim.advanceTo(1e-3);
@@ -163,7 +151,7 @@ TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
   opt.integrator.fixedStep = 2.5e-6;
-  Simulation sim(m, opt, loads(*m, 3000.0));
+  Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   sim.restart(0.0, 0.0);
   sim.advanceTo(1e-4);

@@ -12,18 +12,6 @@ using namespace chaindrive::test;
 
 namespace {
 
-std::shared_ptr<const Model> defaultModel() {
-  static const std::shared_ptr<const Model> m = std::make_shared<const Model>(assemble(defaultDriveDescription()));
-  return m;
-}
-
-std::unique_ptr<InputSignal> loads(const Model& m) {
-  auto in = std::make_unique<HarmonicInputs>(m, 3000.0 * 2.0 * kPi / 60.0);
-  in->setLoad(m.rotorIndex("camshaftIntake"), 3.0);
-  in->setLoad(m.rotorIndex("camshaftExhaust"), 3.0);
-  return in;
-}
-
 std::vector<double> run(const std::string& method, const std::string& joints, double step, double tEnd, int n,
                         Simulation** keep = nullptr) {
   auto m = defaultModel();
@@ -31,7 +19,7 @@ std::vector<double> run(const std::string& method, const std::string& joints, do
   opt.contactMethod = method;
   opt.jointModel = joints;
   opt.integrator.fixedStep = step;
-  auto sim = std::make_unique<Simulation>(m, opt, loads(*m));
+  auto sim = std::make_unique<Simulation>(m, opt, constantLoads(*m, 3000.0));
   sim->start(0.0);
   std::vector<double> out;
   for (int k = 1; k <= n; ++k) {
@@ -82,7 +70,7 @@ TEST(RigidDrive, EventDrivenReportsTheEventStorm) {
   opt.contactMethod = "event-driven";
   opt.integrator.rtol = 1e-4;
   opt.integrator.maxEventsPerSecond = 1e5;
-  Simulation sim(m, opt, loads(*m));
+  Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   try {
     for (int k = 1; k <= 100; ++k) sim.advanceTo(1e-4 * k);
@@ -109,8 +97,8 @@ TEST(RigidDrive, CompliantContactsWithIdealJointsIsAnError) {
   SimulationOptions opt;
   opt.contactMethod = "compliant";
   opt.jointModel = "ideal";
-  EXPECT_THROW(Simulation(m, opt, loads(*m)), std::invalid_argument);
+  EXPECT_THROW(Simulation(m, opt, constantLoads(*m, 3000.0)), std::invalid_argument);
   opt.contactMethod = "lcp";
   opt.jointModel = "";
-  EXPECT_THROW(Simulation(m, opt, loads(*m)), std::invalid_argument);
+  EXPECT_THROW(Simulation(m, opt, constantLoads(*m, 3000.0)), std::invalid_argument);
 }

@@ -46,6 +46,21 @@ inline nlohmann::json& guideJson(nlohmann::json& j, const std::string& name) {
   throw std::runtime_error("no guide " + name);
 }
 
+/// The default drive, assembled once per test program (immutable).
+inline std::shared_ptr<const Model> defaultModel() {
+  static const std::shared_ptr<const Model> m = std::make_shared<const Model>(assemble(defaultDriveDescription()));
+  return m;
+}
+
+/// Constant crankshaft speed and constant camshaft load torques (3 N m each by default).
+inline std::unique_ptr<InputSignal> constantLoads(const Model& m, double rpm, double tauIntake = 3.0,
+                                                  double tauExhaust = 3.0) {
+  auto in = std::make_unique<HarmonicInputs>(m, rpm * 2.0 * kPi / 60.0);
+  in->setLoad(m.rotorIndex("camshaftIntake"), tauIntake);
+  in->setLoad(m.rotorIndex("camshaftExhaust"), tauExhaust);
+  return in;
+}
+
 /// Series of one output sampled at every output step.
 struct Series {
   std::vector<double> t, value;
