@@ -21,12 +21,14 @@ tables (harness/tables.py: crankshaft speed fluctuation and camshaft torques ove
      the tensioner force at engine orders 2, 4, 6, 8 and at the crankshaft meshing order (its
      number of teeth);
    - over the first 2 ms after t0 (a short horizon, see below): RMS error of both.
-   A run that fails is a failure marker with the kind the solver reports.
+   A run that fails is a failure marker with the kind the solver reports. Fixed steps are at
+   most the output step (20 us): the fixed-step schemes never step past an output time.
 4. Stability map: each method at its default setting over engine speed, over its step or
    tolerance, and over joint and contact stiffness (factors on the default drive), from the
    pre-loaded state over 20 ms: ok, or the failure detected by the solver (blow-up, non-finite
    state, tunnelling, LCP ray termination or numerical failure, Newton failure, step-size
-   collapse, runaway events) or the wall-time budget.
+   collapse, runaway events) or the wall-time budget. These runs write no outputs, so their
+   output step is the step itself where the step is longer than 20 us.
 5. Real time: CPU time per fmi2DoStep of ChainDrive.fmu through fmpy's FMU2Slave at fixed
    communication steps of 100 us and 1 ms, for the fixed-step methods (median, 99th percentile,
    maximum).
@@ -91,7 +93,7 @@ METHODS = [
          option="step", full=[3e-6, 2.5e-6, 2e-6, 1e-6], quick=[2.5e-6], default=2.5e-6,
          stability=[1e-6, 2e-6, 3e-6, 4e-6, 6e-6], fixed=True),
     dict(id="ts-ideal", label="time-stepping, ideal joints", contact="time-stepping", joints="ideal",
-         integrator="fixed-verlet", option="step", full=[4e-5, 2e-5, 1e-5, 5e-6], quick=[2e-5], default=2e-5,
+         integrator="fixed-verlet", option="step", full=[2e-5, 1e-5, 5e-6], quick=[2e-5], default=2e-5,
          stability=[5e-6, 1e-5, 2e-5, 4e-5, 8e-5], fixed=True),
     dict(id="ed", label="event-driven (rigid contacts)", contact="event-driven", integrator="arkode-erk",
          option="rtol", full=[1e-3, 1e-5, 1e-7], quick=[1e-5], default=1e-5, stability=[1e-3, 1e-5, 1e-7]),
@@ -127,13 +129,15 @@ def setting_label(m, v):
 
 
 def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initial_state=None, drive=None,
-               save_state=None, write_csv=True, extra=()):
-    """One chaindrive-run; returns the parsed summary (with 'kind' = ok / failure kind / timeout)."""
+               save_state=None, write_csv=True, extra=(), output_step=OUTPUT_STEP):
+    """One chaindrive-run; returns the parsed summary (with 'kind' = ok / failure kind / timeout).
+    The fixed-step schemes never step past an output time, so their step must not exceed the
+    output step: a run whose effective step differs from the one asked for is an error."""
     out_dir.mkdir(parents=True, exist_ok=True)
     csv = out_dir / f"{tag}.csv"
     summary = out_dir / f"{tag}.json"
     cmd = [paths.executable("chaindrive-run"), "--rpm", repr(float(rpm)), "--inputs", str(inputs_csv),
-           "--duration", repr(duration), "--output-step", repr(OUTPUT_STEP), "--contact-method", m["contact"],
+           "--duration", repr(duration), "--output-step", repr(output_step), "--contact-method", m["contact"],
            "--integrator", m["integrator"], f"--{m['option']}", repr(value), "--summary", str(summary), "--quiet"]
     if m.get("joints"):
         cmd += ["--joint-model", m["joints"]]
@@ -156,6 +160,9 @@ def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initi
     if p.returncode not in (0, 3) or not summary.exists():
         raise RuntimeError(f"chaindrive-run failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr.strip()}")
     s = json.loads(summary.read_text())
+    if m["option"] == "step" and s.get("effectiveStep", value) < value * (1.0 - 1e-9):
+        raise RuntimeError(f"{tag}: the step {value:g} s exceeds the output step {output_step:g} s "
+                           f"(effective step {s['effectiveStep']:g} s)")
     s["kind"] = "ok" if s["status"] == "ok" else s.get("failureKind", "other")
     s["csv"] = str(csv) if (write_csv and s["status"] == "ok") else None
     s["wall"] = wall
@@ -286,6 +293,12 @@ class Study:
         if self.args.resume and done.exists():
             sc = json.loads(done.read_text())
             self.log(f"\n## scene {rpm:g} rpm: results of an earlier run ({done.name})")
+            sweeps = {m["id"]: m["quick" if self.quick else "full"] for m in METHODS}
+            kept = [p for p in sc["points"] if any(math.isclose(p["value"], v) for v in sweeps.get(p["method"], []))]
+            for p in sc["points"]:
+                if p not in kept:
+                    self.log(f"  (dropped: {p['label']} at {setting_label(p, p['value'])}, no longer in the sweep)")
+            sc["points"] = kept
             for p in sc["points"]:
                 self.log(point_line(p))
             return sc
@@ -403,7 +416,9 @@ def stability(study):
     def one(job):
         axis, x, m, v, rpm, drive = job
         tag = f"{m['id']}_{axis.split()[0]}_{x:g}"
-        s = run_solver(sd, tag, m, v, rpm, inputs[rpm], t_run, study.timeout, drive=drive, write_csv=False)
+        ostep = max(OUTPUT_STEP, v) if m["option"] == "step" else OUTPUT_STEP  # no CSV: any output step
+        s = run_solver(sd, tag, m, v, rpm, inputs[rpm], t_run, study.timeout, drive=drive, write_csv=False,
+                       output_step=ostep)
         return dict(axis=axis, x=x, method=m["id"], label=m["label"], setting=setting_label(m, v), kind=s["kind"],
                     failure=s.get("failure"), failureTime=s.get("failureTime"), simulated=s.get("simulated", 0.0),
                     cpu_per_s=(s["cpuSeconds"] / s["simulated"]) if s.get("simulated") else None)
@@ -612,12 +627,23 @@ def verdicts(scene):
     rigid = [p for p in pts if p["method"] in ("ts", "ts-ideal", "ed", "ed-ideal")]
     rigid_ok = [p for p in rigid if p["kind"] == "ok"]
     rigid_fail = sorted({p["kind"] for p in rigid if p["kind"] != "ok"})
+    compliant_ok = [p for p in ok if p["method"] not in ("ts", "ts-ideal", "ed", "ed-ideal")]
     if rigid_ok:
         best = min(rigid_ok, key=lambda p: p["errors"]["orders_maxabs_dB"])
-        lines.append(f"- Rigid contacts: {best['label']} runs at {best['cpu_per_s']:.3g} CPU s per simulated s "
-                     f"with orders 2-8 within {best['errors']['orders_maxabs_dB']:.2g} dB and "
-                     f"{best['errors']['F_rms_pct']:.3g} % RMS over the cycle: a different contact model (rigid "
-                     f"instead of compliant), 1-2 orders of magnitude dearer than the compliant methods."
+        cheapest = min(rigid_ok, key=lambda p: p["cpu_per_s"])
+        ratio = (f", {cheapest['cpu_per_s'] / min(p['cpu_per_s'] for p in compliant_ok):.0f} times the cost of the "
+                 f"cheapest compliant run" if compliant_ok else "")
+        ts = sorted([p for p in rigid_ok if p["method"] == "ts"], key=lambda p: -p["value"])
+        why = (f"; the 2 ms error of time stepping hardly falls with the step: {ts[0]['errors']['short_F_rms_pct']:.3g} % "
+               f"at {setting_label(ts[0], ts[0]['value'])}, {ts[-1]['errors']['short_F_rms_pct']:.3g} % at "
+               f"{setting_label(ts[-1], ts[-1]['value'])}" if len(ts) > 1 else "")
+        lines.append(f"- Rigid contacts (a different contact model: their difference from the compliant reference "
+                     f"is mostly model difference, not integration error{why}): the cheapest run is {cheapest['label']} at "
+                     f"{setting_label(cheapest, cheapest['value'])}, {cheapest['cpu_per_s']:.3g} CPU s per simulated s"
+                     f"{ratio}; closest in the order amplitudes is {best['label']} at "
+                     f"{setting_label(best, best['value'])} ({best['cpu_per_s']:.3g} CPU s/s, orders 2-8 within "
+                     f"{best['errors']['orders_maxabs_dB']:.2g} dB, RMS level within "
+                     f"{best['errors']['F_level_pct']:.2g} %)."
                      + (f" Failures: {', '.join(rigid_fail)}." if rigid_fail else ""))
     elif rigid:
         lines.append(f"- Rigid contacts: every rigid-contact run failed ({', '.join(rigid_fail)}).")
@@ -629,10 +655,15 @@ def write_report(study, scenes, stab, rt, started, wall):
     L = []
     L.append("# Speed against accuracy: work-precision and stability of every method")
     L.append("")
-    L.append(f"Generated by `python -m harness.study{' --quick' if study.quick else ''}` on "
-             f"{started:%Y-%m-%d %H:%M} in {wall / 60:.1f} min wall time.")
+    command = getattr(study, "command", None) or f"python -m harness.study{' --quick' if study.quick else ''}"
+    L.append(f"Generated by `{command}` on {started:%Y-%m-%d %H:%M} in {wall / 60:.1f} min wall time "
+             f"(runs in parallel: {study.args.jobs}).")
     L.append(f"Machine: {runs.machine()}.")
     L.append("")
+    if "--resume" in command.split():
+        L.append("Resumed: the scenes whose `scene_<rpm>rpm.json` existed were taken from an earlier run of the "
+                 "study in the same directory (the log says which); the wall time is that of the resumed run.")
+        L.append("")
     if study.quick:
         L.append("**Quick variant**: 3000 rpm, 5 ms transient, 5 ms measured window (not an engine cycle), "
                  "reference rtol 1e-8; a smoke test of the study, not its result.")
@@ -741,7 +772,8 @@ def write_report(study, scenes, stab, rt, started, wall):
     for r in stab["runs"]:
         oc = (f"ok, {r['cpu_per_s']:.3g} CPU s/s" if r["kind"] == "ok" else
               f"**{r['kind']}** at t = {(r['failureTime'] or 0) * 1e3:.3f} ms: {r['failure']}")
-        L.append(f"| {r['label']} | {r['axis']} | {r['x']:g} | {r['setting']} | {oc} |")
+        x = r["x"] * 1e6 if r["axis"] == "step [us]" else r["x"]
+        L.append(f"| {r['label']} | {r['axis']} | {x:g} | {r['setting']} | {oc} |")
     L.append("")
     # real time
     L.append("## Real time: CPU time per fmi2DoStep (ChainDrive.fmu through fmpy FMU2Slave, 3000 rpm)")
@@ -757,6 +789,15 @@ def write_report(study, scenes, stab, rt, started, wall):
         else:
             L.append(f"| {r['label']} | {r['step'] * 1e3:g} ms | 0 | fails: {r['failure']} ||||||")
     L.append("")
+    fastest = [r for r in rt if "median" in r]
+    if fastest:
+        f = min(fastest, key=lambda r: r["ratio"])
+        L.append(f"Verdict: the cheapest fixed-step method is {f['label']} ({f['median'] * 1e3:.3g} ms CPU per "
+                 f"{f['step'] * 1e3:g} ms step, {f['ratio']:.2f} times the step): "
+                 + ("real time on this machine." if f["ratio"] < 1.0 else
+                    "not real time on this machine; hardware-in-the-loop use needs a faster machine or a cheaper "
+                    "model."))
+        L.append("")
     L.append("## Log")
     L.append("")
     L.append("```")
@@ -776,6 +817,8 @@ def rewrite_report(args):
     study = Study(args)
     study.out.mkdir(parents=True, exist_ok=True)
     study.log_lines = r.get("log", [])
+    study.command = r.get("command")
+    args.jobs = st.get("jobs", args.jobs)
     if pathlib.Path(args.report_only).resolve() != (study.out / "results.json").resolve():
         (study.out / "results.json").write_text(json.dumps(r, indent=1))
     for sc in r["scenes"]:
@@ -838,6 +881,7 @@ def main(argv=None):
                    settings=dict(repeats=args.repeats, repeat_below=args.repeat_below, jobs=args.jobs,
                                  timeout=args.timeout))
     (out / "results.json").write_text(json.dumps(results, indent=1))
+    study.command = results["command"]
     write_report(study, scenes, stab, rt, started, wall)
     if not args.keep_csv and not args.quick:
         shutil.rmtree(out / "runs", ignore_errors=True)

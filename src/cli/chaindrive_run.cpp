@@ -213,6 +213,16 @@ int main(int argc, char** argv) {
     };
     write(sim.outputs());
     const long nOut = std::max(1L, std::lround(tEnd / outputStep));
+    // The fixed-step schemes never step past an output time: a step longer than the output
+    // interval is shortened to it.
+    const bool fixedStepMethod = sim.contactMethod() == "time-stepping" ||
+                                 (sim.contactMethod() == "compliant" && (opt.integrator.method == "fixed-verlet" ||
+                                                                         opt.integrator.method == "arkode-erk-fixed"));
+    const double outputInterval = tEnd / static_cast<double>(nOut);
+    const double effectiveStep = std::min(opt.integrator.fixedStep, outputInterval);
+    if (fixedStepMethod && effectiveStep < opt.integrator.fixedStep)
+      std::fprintf(stderr, "chaindrive-run: note: --step %g s exceeds the output interval %g s; steps of %g s are taken\n",
+                   opt.integrator.fixedStep, outputInterval, effectiveStep);
     const double cpuRun0 = cpuSeconds();
     int status = 0;
     std::string failure;
@@ -264,6 +274,7 @@ int main(int argc, char** argv) {
       j["cpuSeconds"] = cpu;
       if (tReached > 0) j["cpuPerSimulatedSecond"] = cpu / tReached;
       j["steps"] = st.steps;
+      if (fixedStepMethod) j["effectiveStep"] = effectiveStep;
       j["rhsEvaluations"] = sim.rhsEvaluations();
       j["jacobianEvaluations"] = st.jacobianEvaluations;
       j["errorTestFailures"] = st.errorTestFailures;

@@ -1,4 +1,5 @@
 """The harness end to end on the solver alone: inputs, a short run, the plots, the summary."""
+import json
 import math
 import subprocess
 import sys
@@ -37,6 +38,19 @@ def test_failure_is_reported_not_hidden(tmp_path):
                              step=1e-5, output_step=1e-4)
     assert code == 3
     assert "blow-up" in s["failure"] or "non-finite" in s["failure"]
+
+
+def test_step_longer_than_the_output_interval_is_reported(tmp_path):
+    # the fixed-step schemes never step past an output time: a longer step is shortened to the
+    # output interval, and the runner says so (stderr) and writes the step it took (summary)
+    summary = tmp_path / "s.json"
+    p = subprocess.run([paths.executable("chaindrive-run"), "--integrator", "fixed-verlet", "--step", "4e-6",
+                        "--output-step", "2e-6", "--duration", "2e-5", "--summary", str(summary), "--quiet"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert "exceeds the output interval" in p.stderr
+    s = json.loads(summary.read_text())
+    assert s["effectiveStep"] == pytest.approx(2e-6, rel=1e-12) and s["steps"] == 10
 
 
 def test_drive_picture(tmp_path):
