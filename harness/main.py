@@ -146,7 +146,7 @@ def main(argv=None):
     write_csv(csv, d)
 
     t0 = cycle  # discard the first engine cycle (start transient)
-    sel = d["time"] >= t0 - 1e-12
+    sel = plots.periodic_window(d["time"], t0)
     title = f"{args.rpm:g} rpm, {args.coupling} loop, {args.method}"
     plots.drive_picture(out / "drive.png", args.drive)
     plots.time_histories(out / "time_histories.png", d, args.rpm, title)

@@ -124,9 +124,19 @@ def time_histories(path, d, rpm, title):
     plt.close(fig)
 
 
+def periodic_window(time, t0):
+    """Samples from t0 to the end without the last one: a run over whole engine cycles sampled at
+    a fixed step then spans whole cycles, so that engine orders fall on spectral bins."""
+    sel = time >= t0 - 1e-12
+    idx = np.flatnonzero(sel)
+    if len(idx) > 1:
+        sel[idx[-1]] = False
+    return sel
+
+
 def spectra(path, d, rpm, t0, title):
     """Tension-guide motion and tensioner force over engine order (the paper's Figure 13)."""
-    sel = d["time"] >= t0
+    sel = periodic_window(d["time"], t0)
     fig, ax = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
     for a, key, scale, label in ((ax[0], "tensionGuide.phi", 180.0 / math.pi, "tension guide angle [deg]"),
                                  (ax[1], "tensioner.F", 1.0, "tensioner force [N]")):
@@ -203,7 +213,11 @@ def link_cycle(path, d, rpm, title, t0=0.0, drive=None):
 
 
 def dominant_orders(t, x, rpm, count=3):
+    """The largest spectral peaks (local maxima, so that the leakage of one order into its
+    neighbouring bins is not listed as further orders) between order 0.75 and 40."""
     o, amp = order_spectrum(t, x, rpm)
-    keep = (o > 0.75) & (o <= 40)
-    idx = np.argsort(amp[keep])[::-1][:count]
-    return [(float(o[keep][i]), float(amp[keep][i])) for i in idx]
+    padded = np.concatenate(([-np.inf], amp, [-np.inf]))
+    peak = (amp >= padded[:-2]) & (amp > padded[2:])
+    keep = np.flatnonzero(peak & (o > 0.75) & (o <= 40))
+    idx = keep[np.argsort(amp[keep])[::-1][:count]]
+    return [(float(o[i]), float(amp[i])) for i in idx]

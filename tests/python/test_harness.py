@@ -58,3 +58,16 @@ def test_drive_picture(tmp_path):
     assert p.stat().st_size > 20000
 
 
+
+
+def test_dominant_orders_are_peaks_not_leakage_bins():
+    # 3000 rpm, six revolutions: bins 1/6 order apart; an order between two bins leaks into both,
+    # and both neighbours must not be listed as separate orders ahead of the next real one
+    rpm = 3000.0
+    t = np.arange(0.0, 0.12, 1e-5)
+    w = 2.0 * math.pi * rpm / 60.0
+    x = 5.0 * np.sin(8.08 * w * t) + 3.0 * np.sin(2.0 * w * t) + 1.0 * np.sin(13.0 * w * t)
+    found = plots.dominant_orders(t, x, rpm, count=3)
+    orders = [o for o, _ in found]
+    assert abs(orders[0] - 8.08) < 0.1, found
+    assert abs(orders[1] - 2.0) < 1e-6 and abs(orders[2] - 13.0) < 1e-6, found
