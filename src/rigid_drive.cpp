@@ -4,6 +4,7 @@
 
 #include "contact_kinematics.h"
 #include "dynamics.h"
+#include "health.h"
 
 namespace chaindrive {
 
@@ -199,26 +200,14 @@ void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, st
 }
 
 bool RigidContactDrive::healthy(double t, const double* q, const double* v, std::string& why) {
-  for (int i = 0; i < n_; ++i)
-    if (!std::isfinite(q[i]) || !std::isfinite(v[i])) {
-      why = "non-finite state (component " + std::to_string(i) + ")";
-      return false;
-    }
+  if (!finiteState(q, n_, why) || !finiteState(v, n_, why)) return false;
   const Model& m = *model_;
   pack(q, v, y_.data());
   evaluateKinematics(m, d_, y_.data());
-  const double limit = health_.blowUpDeformation * m.chain.pitch;
-  for (int j = 0; j < m.chain.links; ++j) {
-    const double dist = norm(d_.links[j].front - d_.links[(j + 1) % m.chain.links].rear);
-    if (!(dist <= limit)) {
-      why = "blow-up: joint " + std::to_string(j) + " opened by " + std::to_string(dist * 1e3) + " mm (limit " +
-            std::to_string(limit * 1e3) + " mm) at t = " + std::to_string(t) + " s";
-      return false;
-    }
-  }
   // the contacts of the last constraint evaluation (within the step)
-  return !deepPenetration(last_.data(), static_cast<int>(last_.size()),
-                          health_.tunnellingDepth * m.chain.rollerRadius, t, why);
+  return chainHealthy(
+      m, health_, [&](int j) { return norm(d_.links[j].front - d_.links[(j + 1) % m.chain.links].rear); },
+      last_.data(), static_cast<int>(last_.size()), t, why);
 }
 
 RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const std::string& method,

@@ -4,6 +4,7 @@
 
 #include "contact_kinematics.h"
 #include "dynamics.h"
+#include "health.h"
 
 namespace chaindrive {
 
@@ -76,21 +77,9 @@ bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept 
   // cheap enough for every fixed step: finiteness of the state, and the joint deformations of
   // the last right-hand-side evaluation (at or next to this state)
   const Model& m = *model_;
-  for (int i = 0; i < m.nStates; ++i)
-    if (!std::isfinite(y[i])) {
-      why = "non-finite state (component " + std::to_string(i) + ")";
-      return false;
-    }
-  const double limit = health_.blowUpDeformation * m.chain.pitch;
-  for (int j = 0; j < m.chain.links; ++j) {
-    const double dist = data_.joints[j].deformation;
-    if (!(dist <= limit)) {
-      why = "blow-up: joint " + std::to_string(j) + " stretched by " + std::to_string(dist * 1e3) + " mm (limit " +
-            std::to_string(limit * 1e3) + " mm) at t = " + std::to_string(t) + " s";
-      return false;
-    }
-  }
-  return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.rollerRadius, t, why);
+  return finiteState(y, m.nStates, why) &&
+         chainHealthy(m, health_, [&](int j) { return data_.joints[j].deformation; }, data_.contacts.data(),
+                      data_.nContacts, t, why);
 }
 
 Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,

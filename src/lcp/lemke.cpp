@@ -146,31 +146,25 @@ int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
   }
   if (nc == 0) return -1;
 
-  // First component: the ratio b_i / a_i. A basic value within its rounding bound of zero counts
-  // as zero (the degenerate rows that the lexicographic rule is for); other ratios tie only if
-  // they agree to a few units in the last place.
-  auto ratio = [&](int i) {
-    const double bi = b_(i);
-    return bi <= kZeroTolerance * eps * rowNorm_(i) * qNorm ? 0.0 : bi / a_(i);
-  };
-  int imin = cand_[0];
-  double tmin = ratio(imin);
-  for (int c = 1; c < nc; ++c) {
-    const int i = cand_[static_cast<std::size_t>(c)];
-    const double t = ratio(i);
-    if (t < tmin) {
-      imin = i;
-      tmin = t;
-    }
-  }
-  {
+  // Keeps the candidates whose value is the minimum within kTieTolerance (relative).
+  auto keepMinimisers = [&](auto value) {
+    double vmin = value(cand_[0]);
+    for (int c = 1; c < nc; ++c) vmin = std::min(vmin, value(cand_[static_cast<std::size_t>(c)]));
     int kept = 0;
     for (int c = 0; c < nc; ++c) {
       const int i = cand_[static_cast<std::size_t>(c)];
-      if (ratio(i) <= tmin * (1.0 + kTieTolerance)) cand_[static_cast<std::size_t>(kept++)] = i;
+      if (value(i) - vmin <= kTieTolerance * std::abs(vmin)) cand_[static_cast<std::size_t>(kept++)] = i;
     }
     nc = kept;
-  }
+  };
+
+  // First component: the ratio b_i / a_i. A basic value within its rounding bound of zero counts
+  // as zero (the degenerate rows that the lexicographic rule is for); other ratios tie only if
+  // they agree to a few units in the last place.
+  keepMinimisers([&](int i) {
+    const double bi = b_(i);
+    return bi <= kZeroTolerance * eps * rowNorm_(i) * qNorm ? 0.0 : bi / a_(i);
+  });
   if (nc == 1) return cand_[0];
   // z0 among the minimisers: let it leave (that ends the method with a solution).
   for (int c = 0; c < nc; ++c)
@@ -179,29 +173,11 @@ int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
 
   // Further components: the columns of B^-1, divided by a_i, in order; entries within their
   // rounding bound of zero count as zero.
-  for (int k = 0; k < n && nc > 1; ++k) {
-    auto value = [&](int i) {
+  for (int k = 0; k < n && nc > 1; ++k)
+    keepMinimisers([&](int i) {
       const double v = binv_(i, k);
       return std::abs(v) <= kZeroTolerance * eps * rowNorm_(i) ? 0.0 : v / a_(i);
-    };
-    imin = cand_[0];
-    double vmin = value(imin);
-    for (int c = 1; c < nc; ++c) {
-      const int i = cand_[static_cast<std::size_t>(c)];
-      const double v = value(i);
-      if (v < vmin) {
-        imin = i;
-        vmin = v;
-      }
-    }
-    int kept = 0;
-    for (int c = 0; c < nc; ++c) {
-      const int i = cand_[static_cast<std::size_t>(c)];
-      const double v = value(i);
-      if (v - vmin <= kTieTolerance * std::abs(vmin)) cand_[static_cast<std::size_t>(kept++)] = i;
-    }
-    nc = kept;
-  }
+    });
   // Still tied (only for a numerically singular basis): the largest pivot, then the first row.
   int best = cand_[0];
   for (int c = 1; c < nc; ++c) {
