@@ -259,6 +259,11 @@ fmi2Status Instance::prepare() {
     const PreloadReport& rep = sim_->preloadReport();
     log(rep.converged ? fmi2OK : fmi2Warning, rep.converged ? "logEvents" : "logStatusWarning",
         "start state: %s (%.3f s CPU)", rep.message.c_str(), rep.cpuSeconds);
+    const TimeGrid& grid = sim_->grid();
+    log(fmi2OK, "logEvents",
+        "time grid: t_k = %.17g s + k %.17g s; a communication point within %.3g s of a grid point is that point, "
+        "one farther off is integrated to the grid point before it (output solver.time)",
+        grid.start, grid.unit, kSnapFraction * grid.unit);
     steps_ = 0;
     stepHint_ = 0.0;
     lastSuccessfulTime_ = time_;
@@ -303,14 +308,18 @@ fmi2Status Instance::doStep(double cp, double h) {
     log(fmi2Error, "logStatusError", "fmi2DoStep: the FMU is not initialized");
     return fmi2Error;
   }
+  if (!sim_->grid().reaches(tEnd)) {
+    log(fmi2Error, "logStatusError", "fmi2DoStep: the step ends at %.17g s, beyond the range of the time grid", tEnd);
+    return fmi2Error;
+  }
   applyInputs();
   try {
-    // every communication step starts the integrator afresh from the current state at the
-    // master's communication point: the step depends on (state, inputs, point, step size) only,
-    // so a rollback with fmi2SetFMUstate is exact and importers that agree on the points agree
-    // on the results bit for bit
-    time_ = cp;
-    sim_->restart(cp, stepHint_);
+    // Every communication step integrates from the current grid point to the grid point of
+    // tEnd (src/time_grid.h: tEnd itself when it lies on the grid, else the point before it),
+    // restarting the integrator there: a step depends on (state, inputs, grid points) only, so
+    // a rollback with fmi2SetFMUstate is exact and every master that means the same
+    // communication points gets the same bits, however it rounds them.
+    sim_->restart(stepHint_);
     const long long base = sim_->integratorStats().steps;
     sim_->advanceTo(tEnd);
     const IntegratorStats st = sim_->integratorStats();
@@ -322,7 +331,7 @@ fmi2Status Instance::doStep(double cp, double h) {
     log(fmi2Discard, "logStatusDiscard",
         "fmi2DoStep from t = %.9g s to %.9g s could not be completed: %s; the state is kept at t = %.9g s "
         "(fmi2SetFMUstate can restore an earlier one)",
-        cp, tEnd, e.what(), time_);
+        cp, tEnd, e.what(), sim_->time());
     return fmi2Discard;
   }
   time_ = tEnd;
@@ -418,6 +427,7 @@ fmi2Status Instance::getReal(const fmi2ValueReference vr[], size_t n, fmi2Real v
       case kEnergyDissipated: v[i] = o.energy.dissipated; break;
       case kEnergyInput: v[i] = o.energy.inputWork; break;
       case kChainMaxJointDeformation: v[i] = o.maxJointDeformation; break;
+      case kSolverTime: v[i] = sim_->time(); break;
       default: return badVr("fmi2GetReal", vr[i], "is not readable");
     }
   }
@@ -568,7 +578,12 @@ Snapshot Instance::snapshot() const {
   s.crankSpeed = inCrankSpeed_;
   s.tauIntake = inTauIntake_;
   s.tauExhaust = inTauExhaust_;
-  if (sim_) s.y = sim_->state();
+  if (sim_) {
+    s.y = sim_->state();
+    s.gridStart = sim_->grid().start;
+    s.gridUnit = sim_->grid().unit;
+    s.gridIndex = sim_->gridIndex();
+  }
   return s;
 }
 
@@ -579,7 +594,14 @@ fmi2Status Instance::restore(const Snapshot& s) {
           "the instance with the same drive first)", s.y.size(), sim_ ? model_->nStates : 0);
       return fmi2Error;
     }
-    sim_->startFrom(s.time, s.y);
+    const TimeGrid& grid = sim_->grid();
+    if (s.gridStart != grid.start || s.gridUnit != grid.unit) {
+      log(fmi2Error, "logStatusError", "fmi2SetFMUstate: the state was taken on the time grid %.17g s + k %.17g s, this "
+          "instance runs on %.17g s + k %.17g s (same start time and solver.step needed)", s.gridStart, s.gridUnit,
+          grid.start, grid.unit);
+      return fmi2Error;
+    }
+    sim_->restoreAt(s.gridIndex, s.y);
   }
   state_ = s.state == kStepFailed || s.state == kError ? kStepComplete : s.state;
   time_ = s.time;
@@ -595,7 +617,7 @@ fmi2Status Instance::restore(const Snapshot& s) {
 }
 
 namespace {
-constexpr char kMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '1'};
+constexpr char kMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '2'};
 }
 
 std::vector<char> Instance::serialize(const Snapshot& s) {
@@ -608,14 +630,17 @@ std::vector<char> Instance::serialize(const Snapshot& s) {
   const uint64_t n = s.y.size();
   put(&n, sizeof n);
   put(&s.state, sizeof s.state);
-  for (double v : {s.time, s.lastSuccessfulTime, s.stepHint, s.crankSpeed, s.tauIntake, s.tauExhaust}) put(&v, sizeof v);
+  for (double v : {s.time, s.lastSuccessfulTime, s.stepHint, s.crankSpeed, s.tauIntake, s.tauExhaust, s.gridStart,
+                   s.gridUnit})
+    put(&v, sizeof v);
   put(&s.steps, sizeof s.steps);
+  put(&s.gridIndex, sizeof s.gridIndex);
   if (n) put(s.y.data(), n * sizeof(double));
   return out;
 }
 
 fmi2Status Instance::deserialize(const char* data, size_t size, Snapshot& s) {
-  const std::size_t head = sizeof kMagic + sizeof(uint64_t) + sizeof(unsigned) + 6 * sizeof(double) + sizeof(long long);
+  const std::size_t head = sizeof kMagic + sizeof(uint64_t) + sizeof(unsigned) + 8 * sizeof(double) + 2 * sizeof(long long);
   if (!data || size < head || std::memcmp(data, kMagic, sizeof kMagic) != 0) {
     log(fmi2Error, "logStatusError", "fmi2DeSerializeFMUstate: %zu bytes are not a serialized ChainDrive state", size);
     return fmi2Error;
@@ -627,15 +652,17 @@ fmi2Status Instance::deserialize(const char* data, size_t size, Snapshot& s) {
   };
   uint64_t n = 0;
   get(&n, sizeof n);
-  if (size != head + n * sizeof(double)) {
+  if ((size - head) % sizeof(double) != 0 || n != (size - head) / sizeof(double)) {  // no overflow in n * 8
     log(fmi2Error, "logStatusError", "fmi2DeSerializeFMUstate: %zu bytes do not match a state of %llu components", size,
         static_cast<unsigned long long>(n));
     return fmi2Error;
   }
   get(&s.state, sizeof s.state);
-  for (double* v : {&s.time, &s.lastSuccessfulTime, &s.stepHint, &s.crankSpeed, &s.tauIntake, &s.tauExhaust})
+  for (double* v : {&s.time, &s.lastSuccessfulTime, &s.stepHint, &s.crankSpeed, &s.tauIntake, &s.tauExhaust,
+                    &s.gridStart, &s.gridUnit})
     get(v, sizeof *v);
   get(&s.steps, sizeof s.steps);
+  get(&s.gridIndex, sizeof s.gridIndex);
   s.y.resize(n);
   if (n) get(s.y.data(), n * sizeof(double));
   return fmi2OK;

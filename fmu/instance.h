@@ -31,6 +31,8 @@ struct Snapshot {
   double lastSuccessfulTime = 0.0;
   double stepHint = 0.0;
   long long steps = 0;
+  double gridStart = 0.0, gridUnit = 0.0;  // the time grid, to check that a restore is on it
+  long long gridIndex = 0;                 // grid point of the state y
   double crankSpeed = 0.0, tauIntake = 0.0, tauExhaust = 0.0;
   std::vector<double> y;
 };
@@ -108,6 +110,8 @@ class Instance {
 
   Parameters params_;
   double inCrankSpeed_ = 314.1592653589793, inTauIntake_ = 0.0, inTauExhaust_ = 0.0;
+  // time_: the master's communication point (cp + h of the last step, as the master formed it);
+  // the solver state is at the grid point assigned to it (Simulation::time())
   double time_ = 0.0, startTime_ = 0.0, stopTime_ = 0.0, lastSuccessfulTime_ = 0.0, stepHint_ = 0.0;
   bool stopTimeDefined_ = false;
   long long steps_ = 0;

@@ -38,6 +38,7 @@ enum Vr : unsigned {
   kEnergyDissipated = 31,
   kEnergyInput = 32,
   kChainMaxJointDeformation = 33,
+  kSolverTime = 34,
   kContacts = 40,
   kSolverSteps = 41,
   // parameters
@@ -97,6 +98,7 @@ constexpr Variable kVariables[] = {
   {"chain.maxJointDeformation",  kChainMaxJointDeformation, Type::Real,    Causality::Output,    ""},
   {"contacts",                   kContacts,                 Type::Integer, Causality::Output,    ""},
   {"solver.steps",               kSolverSteps,              Type::Integer, Causality::Output,    ""},
+  {"solver.time",                kSolverTime,               Type::Real,    Causality::Output,    ""},
   {"driveFile",                  kDriveFile,                Type::String,  Causality::Parameter, ""},
   {"link.index",                 kLinkIndex,                Type::Integer, Causality::Parameter, "-1"},
   {"solver.method",              kSolverMethod,             Type::String,  Causality::Parameter, "fixed-verlet"},

@@ -218,6 +218,7 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
   if (method == "time-stepping") {
     ns::MoreauJeanSettings ms;
     ms.step = s.fixedStep;
+    fixedStep_ = s.fixedStep;
     ms.gapTolerance = s.gapTolerance;
     ms.recordLcpDirectory = s.recordLcpDirectory;
     ms.recordLcpCount = s.recordLcpCount;

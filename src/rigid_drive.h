@@ -59,6 +59,7 @@ class RigidIntegrator : public Integrator {
   void advance(double tout, double* y) override;
   IntegratorStats stats() const override;
   std::string name() const override { return method_; }
+  double fixedStep() const override { return fixedStep_; }
   const ns::NsStats& contactStats() const;
   /// Contact points with the forces of the last step (mean force over it for time stepping).
   void contactPoints(std::vector<ContactPoint>& out) const;
@@ -69,6 +70,7 @@ class RigidIntegrator : public Integrator {
   std::shared_ptr<RigidContactDrive> sys_;
   std::string method_;
   std::unique_ptr<ns::NonsmoothMethod> ns_;
+  double fixedStep_ = 0.0;  // time stepping: its step; event driven: 0 (adaptive)
   std::vector<double> q_, v_;
 };
 

@@ -107,6 +107,8 @@ Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptio
   }
   outData_ = std::make_unique<Data>(*model_);
   y_.assign(model_->nStates, 0.0);
+  const double step = integrator_->fixedStep();
+  grid_.unit = step > 0.0 ? step : kAdaptiveTimeQuantum;
 }
 
 long long Simulation::rhsEvaluations() const {
@@ -122,21 +124,30 @@ void Simulation::start(double t0) {
 }
 
 void Simulation::startFrom(double t0, const std::vector<double>& y) {
+  grid_.start = t0;
+  restoreAt(0, y);
+}
+
+void Simulation::restoreAt(long long k, const std::vector<double>& y) {
   y_ = y;
-  t_ = t0;
-  integrator_->reset(t0, y_.data());
+  k_ = k;
+  integrator_->reset(time(), y_.data());
 }
 
-void Simulation::restart(double t, double initialStep) {
-  t_ = t;
+void Simulation::restart(double initialStep) {
   integrator_->setInitialStep(initialStep);
-  integrator_->reset(t_, y_.data());
+  integrator_->reset(time(), y_.data());
 }
 
-void Simulation::advanceTo(double t) {
-  if (t <= t_) return;
-  integrator_->advance(t, y_.data());
-  t_ = t;
+double Simulation::advanceTo(double t) {
+  if (!grid_.reaches(t))
+    throw std::invalid_argument("time " + std::to_string(t) + " s is beyond the range of the time grid");
+  const long long target = grid_.indexOf(t);
+  if (target > k_) {
+    integrator_->advance(grid_.time(target), y_.data());
+    k_ = target;
+  }
+  return time();
 }
 
 const Outputs& Simulation::outputs() {
@@ -145,9 +156,9 @@ const Outputs& Simulation::outputs() {
     RigidForces rf;
     rf.contacts = &rigidContacts_;
     if (rigid_->idealJoints()) rf.joints = &rigidIntegrator_->jointForces();
-    computeOutputs(*model_, *outData_, *inputs_, t_, y_.data(), options_.monitoredLink, out_, &rf);
+    computeOutputs(*model_, *outData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_, &rf);
   } else {
-    computeOutputs(*model_, *outData_, *inputs_, t_, y_.data(), options_.monitoredLink, out_);
+    computeOutputs(*model_, *outData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_);
   }
   return out_;
 }

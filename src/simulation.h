@@ -13,6 +13,7 @@
 #include "outputs.h"
 #include "preload.h"
 #include "rigid_drive.h"
+#include "time_grid.h"
 
 namespace chaindrive {
 
@@ -60,19 +61,28 @@ class Simulation {
  public:
   Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt, std::unique_ptr<InputSignal> inputs);
 
-  /// Pre-loads the start state for the inputs at t0 and starts the integrator there.
+  /// Pre-loads the start state for the inputs at t0 and starts the integrator there; the run's
+  /// time grid (time_grid.h) starts at t0.
   void start(double t0);
-  /// Starts (or restarts, e.g. after an FMU state restore) from a given state.
+  /// Starts from a given state at t0 (a saved state); the time grid starts at t0.
   void startFrom(double t0, const std::vector<double>& y);
-  /// Integrates to t; throws IntegrationError (time and reason) when the method fails. The state
-  /// stays at its last successful value.
-  void advanceTo(double t);
-  /// Restarts the integrator from the current state, taken to be at time t (a communication step
-  /// that must not depend on the integrator's history: exact rollback, bit-identical instances).
+  /// Starts from a given state at point k of the current time grid (an FMU state restore).
+  void restoreAt(long long k, const std::vector<double>& y);
+  /// Integrates to the grid point of t (time_grid.h: t itself when it is on the grid, otherwise
+  /// the point before it) and returns that point's time; throws IntegrationError (time and
+  /// reason) when the method fails, std::invalid_argument when t is beyond the grid's range. The
+  /// state stays at its last successful value.
+  double advanceTo(double t);
+  /// Restarts the integrator from the current state and grid point (a communication step that
+  /// must not depend on the integrator's history: exact rollback, bit-identical instances).
   /// `initialStep` is the first step adaptive methods try (0: their own estimate).
-  void restart(double t, double initialStep);
+  void restart(double initialStep);
 
-  double time() const { return t_; }
+  /// The run's time grid: unit = the fixed step of fixed-step methods, kAdaptiveTimeQuantum for
+  /// adaptive ones; the state is at grid point gridIndex().
+  const TimeGrid& grid() const { return grid_; }
+  long long gridIndex() const { return k_; }
+  double time() const { return grid_.time(k_); }
   const std::vector<double>& state() const { return y_; }
   const Model& model() const { return *model_; }
   InputSignal& inputs() { return *inputs_; }
@@ -80,6 +90,8 @@ class Simulation {
   IntegratorStats integratorStats() const { return integrator_->stats(); }
   long long rhsEvaluations() const;
   const std::string& integratorName() const { return options_.integrator.method; }
+  /// The step of a fixed-step method (compliant or time stepping); 0 for adaptive methods.
+  double integratorFixedStep() const { return integrator_->fixedStep(); }
   const std::string& contactMethod() const { return contactMethod_; }
   /// Counters of the rigid-contact methods (nullptr for compliant contacts).
   const ns::NsStats* contactStats() const { return rigidIntegrator_ ? &rigidIntegrator_->contactStats() : nullptr; }
@@ -98,7 +110,8 @@ class Simulation {
   std::vector<ContactPoint> rigidContacts_;
   std::unique_ptr<Data> outData_;
   std::vector<double> y_;
-  double t_ = 0.0;
+  TimeGrid grid_;
+  long long k_ = 0;  // grid index of the state y_
   PreloadReport preload_;
   Outputs out_;
 };

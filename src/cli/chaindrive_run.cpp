@@ -45,10 +45,12 @@ void usage() {
       "  --joint-model J         journal-bearing or ideal (default: the drive's)\n"
       "  --rtol X                relative tolerance of adaptive integrators and of the event-driven\n"
       "                          method (default 1e-5)\n"
-      "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6)\n"
+      "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6);\n"
+      "                          they step on the grid t0 + k S\n"
       "  --max-step S            largest step of adaptive integrators [s] (default unlimited)\n"
       "  --min-step S            adaptive integrators: a smaller step is a step-size collapse [s] (1e-10)\n"
-      "  --output-step S         output interval [s] (default 1e-4)\n"
+      "  --output-step S         output interval [s] (default 1e-4), rounded to whole grid steps (the\n"
+      "                          fixed step, or 1 us for adaptive methods)\n"
       "  --load NAME=TORQUE      constant load torque [N m] on a free sprocket (+ opposes rotation)\n"
       "  --crank-vibration K:A   rotational vibration of engine order K (per crank rev) with angle\n"
       "                          amplitude A [deg]; repeatable\n"
@@ -212,17 +214,15 @@ int main(int argc, char** argv) {
           << o.contacts << "\n";
     };
     write(sim.outputs());
-    const long nOut = std::max(1L, std::lround(tEnd / outputStep));
-    // The fixed-step schemes never step past an output time: a step longer than the output
-    // interval is shortened to it.
-    const bool fixedStepMethod = sim.contactMethod() == "time-stepping" ||
-                                 (sim.contactMethod() == "compliant" && (opt.integrator.method == "fixed-verlet" ||
-                                                                         opt.integrator.method == "arkode-erk-fixed"));
-    const double outputInterval = tEnd / static_cast<double>(nOut);
-    const double effectiveStep = std::min(opt.integrator.fixedStep, outputInterval);
-    if (fixedStepMethod && effectiveStep < opt.integrator.fixedStep)
-      std::fprintf(stderr, "chaindrive-run: note: --step %g s exceeds the output interval %g s; steps of %g s are taken\n",
-                   opt.integrator.fixedStep, outputInterval, effectiveStep);
+    // Outputs every `stride` points of the run's time grid (whole fixed steps, or whole quanta
+    // of the adaptive methods), so that every output time is a grid point and every step is whole.
+    const TimeGrid& grid = sim.grid();
+    const long long stride = std::max(1LL, std::llround(outputStep / grid.unit));
+    const double outputInterval = static_cast<double>(stride) * grid.unit;
+    const long nOut = std::max(1L, static_cast<long>(std::floor(tEnd / outputInterval + 1e-9)));  // not past tEnd
+    if (std::fabs(outputInterval - outputStep) > 1e-9 * outputStep)
+      std::fprintf(stderr, "chaindrive-run: note: the output step %g s is not a whole number of grid steps of %g s; "
+                   "outputs every %g s\n", outputStep, grid.unit, outputInterval);
     const double cpuRun0 = cpuSeconds();
     int status = 0;
     std::string failure;
@@ -230,9 +230,8 @@ int main(int argc, char** argv) {
     std::string failureKindName;
     double failureTime = 0.0;
     for (long k = 1; k <= nOut; ++k) {
-      const double t = t0 + tEnd * static_cast<double>(k) / static_cast<double>(nOut);
       try {
-        sim.advanceTo(t);
+        sim.advanceTo(grid.time(k * stride));
       } catch (const IntegrationError& e) {
         failure = e.what();
         failureKindName = e.kind();
@@ -240,7 +239,7 @@ int main(int argc, char** argv) {
         status = 3;
         break;
       }
-      tReached = t - t0;
+      tReached = sim.time() - t0;
       write(sim.outputs());
     }
     const double cpu = cpuSeconds() - cpuRun0;
@@ -274,7 +273,8 @@ int main(int argc, char** argv) {
       j["cpuSeconds"] = cpu;
       if (tReached > 0) j["cpuPerSimulatedSecond"] = cpu / tReached;
       j["steps"] = st.steps;
-      if (fixedStepMethod) j["effectiveStep"] = effectiveStep;
+      if (sim.integratorFixedStep() > 0.0) j["step"] = sim.integratorFixedStep();
+      j["outputStep"] = outputInterval;
       j["rhsEvaluations"] = sim.rhsEvaluations();
       j["jacobianEvaluations"] = st.jacobianEvaluations;
       j["errorTestFailures"] = st.errorTestFailures;

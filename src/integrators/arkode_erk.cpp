@@ -7,6 +7,7 @@
 
 #include "integrators.h"
 #include "sundials_common.h"
+#include "time_grid.h"
 
 namespace chaindrive {
 
@@ -17,6 +18,7 @@ class ArkodeErk : public Integrator {
   ArkodeErk(OdeSystem& sys, const IntegratorSettings& s, bool fixed)
       : sys_(sys), settings_(s), fixed_(fixed), y_(sys.size(), ctx_.ctx), atol_(sys.size(), ctx_.ctx) {
     cb_.sys = &sys;
+    if (fixed && !(s.fixedStep > 0.0)) throw std::invalid_argument("arkode-erk-fixed needs a positive fixed step");
   }
   ~ArkodeErk() override {
     if (mem_) ERKStepFree(&mem_);
@@ -26,7 +28,8 @@ class ArkodeErk : public Integrator {
 
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * sys_.size());
-    t_ = t0;
+    grid_ = TimeGrid{t0, settings_.fixedStep};
+    k_ = 0;
     if (!mem_) {
       mem_ = ERKStepCreate(chaindriveRhs, t0, y_.v, ctx_.ctx);
       if (!mem_) throw std::runtime_error("ERKStepCreate failed");
@@ -47,24 +50,18 @@ class ArkodeErk : public Integrator {
   }
 
   void advance(double tout, double* y) override {
-    if (settings_.stopAtOutputs || fixed_) check(ERKStepSetStopTime(mem_, tout), "ERKStepSetStopTime");
-    double t = t_;
-    const int flag = ERKStepEvolve(mem_, tout, y_.v, &t, ARK_NORMAL);
-    if (flag < 0) {
-      double tcur = t;
-      ERKStepGetCurrentTime(mem_, &tcur);
-      char* fname = ERKStepGetReturnFlagName(flag);
-      std::string reason = fname ? fname : "ARKODE error";
-      std::free(fname);
-      if (!sys_.lastError().empty()) reason += "; " + sys_.lastError();
-      if (!cb_.lastSolverMessage.empty()) reason += "; " + cb_.lastSolverMessage;
-      throw IntegrationError(tcur, reason);
+    if (fixed_) {
+      advanceOnGrid(tout);
+    } else {
+      if (settings_.stopAtOutputs) check(ERKStepSetStopTime(mem_, tout), "ERKStepSetStopTime");
+      evolve(tout, ARK_NORMAL);
     }
-    t_ = tout;
     std::memcpy(y, y_.data(), sizeof(double) * sys_.size());
     std::string why;
     if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
   }
+
+  double fixedStep() const override { return fixed_ ? settings_.fixedStep : 0.0; }
 
   IntegratorStats stats() const override {
     IntegratorStats s;
@@ -78,6 +75,27 @@ class ArkodeErk : public Integrator {
   }
 
  private:
+  // Fixed step: one ARKODE step of exactly h per grid point (one-step mode, no stop time, which
+  // would shorten the last step to a rounding-dependent length).
+  void advanceOnGrid(double tout) {
+    const long long target = grid_.indexOf(tout);
+    for (; k_ < target; ++k_) evolve(grid_.time(k_ + 1), ARK_ONE_STEP);
+  }
+
+  void evolve(double tout, int mode) {
+    double t = 0.0;
+    const int flag = ERKStepEvolve(mem_, tout, y_.v, &t, mode);
+    if (flag >= 0) return;
+    double tcur = t;
+    ERKStepGetCurrentTime(mem_, &tcur);
+    char* fname = ERKStepGetReturnFlagName(flag);
+    std::string reason = fname ? fname : "ARKODE error";
+    std::free(fname);
+    if (!sys_.lastError().empty()) reason += "; " + sys_.lastError();
+    if (!cb_.lastSolverMessage.empty()) reason += "; " + cb_.lastSolverMessage;
+    throw IntegrationError(tcur, reason);
+  }
+
   void check(int flag, const char* what) {
     if (flag < 0) throw std::runtime_error(std::string(what) + " failed (flag " + std::to_string(flag) + ")");
   }
@@ -88,7 +106,8 @@ class ArkodeErk : public Integrator {
   SerialVector y_, atol_;
   CallbackState cb_;
   void* mem_ = nullptr;
-  double t_ = 0.0;
+  TimeGrid grid_;     // fixed step: t0 (the last reset) + k h
+  long long k_ = 0;   // fixed step: grid index of the state
   double initialStep_ = 0.0;
 };
 

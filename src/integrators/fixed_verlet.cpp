@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrators.h"
+#include "time_grid.h"
 
 namespace chaindrive {
 
@@ -16,7 +17,7 @@ namespace {
 
 class FixedVerlet : public Integrator {
  public:
-  FixedVerlet(OdeSystem& sys, const IntegratorSettings& s) : sys_(sys), settings_(s) {
+  FixedVerlet(OdeSystem& sys, const IntegratorSettings& s) : sys_(sys) {
     const int n = sys.size();
     y_.assign(n, 0.0);
     f_.assign(n, 0.0);
@@ -28,31 +29,27 @@ class FixedVerlet : public Integrator {
       else others_.push_back(i);
     }
     if (!(s.fixedStep > 0.0)) throw std::invalid_argument("fixed-verlet needs a positive fixed step");
+    grid_.unit = s.fixedStep;
   }
   std::string name() const override { return "fixed-verlet"; }
 
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * y_.size());
-    t_ = t0;
-    eval(t_, y_.data(), f_.data());
+    grid_.start = t0;
+    k_ = 0;
+    eval(t0, y_.data(), f_.data());
     ++stats_.rhsEvaluations;
   }
 
   void advance(double tout, double* y) override {
-    const double span = tout - t_;
-    if (span > 0.0) {
-      // equal steps no longer than the set step, ending exactly at tout
-      const long nSteps = std::max(1L, static_cast<long>(std::ceil(span / settings_.fixedStep * (1.0 - 1e-12))));
-      const double h = span / static_cast<double>(nSteps);
-      for (long k = 0; k < nSteps; ++k) {
-        step(h);
-        const bool last = k + 1 == nSteps;
-        t_ = last ? tout : t_ + h;
-      }
-    }
+    // whole steps of exactly h on the grid from the last reset: the step times are t0 + k h,
+    // whatever way the caller formed tout
+    const long long target = grid_.indexOf(tout);
+    for (; k_ < target; ++k_) step(grid_.unit, grid_.time(k_ + 1));
     std::memcpy(y, y_.data(), sizeof(double) * y_.size());
   }
 
+  double fixedStep() const override { return grid_.unit; }
   IntegratorStats stats() const override { return stats_; }
 
  private:
@@ -60,14 +57,15 @@ class FixedVerlet : public Integrator {
     const int flag = sys_.rhs(t, y, f);
     if (flag != 0) throw IntegrationError(t, "right-hand side failed: " + sys_.lastError());
   }
-  void step(double h) {
+  // one step of length h ending at the grid time tNext (formed from the index, not accumulated)
+  void step(double h, double tNext) {
     double* y = y_.data();
     const double hh = 0.5 * h;
     for (int i : velocities_) y[i] += hh * f_[i];             // kick
     for (const auto& p : positions_) y[p.first] += h * y[p.second];  // drift
     // prescribed angles and accumulators: predictor with the old derivative, corrected below
     for (int i : others_) y[i] += h * f_[i];
-    eval(t_ + h, y, fNew_.data());
+    eval(tNext, y, fNew_.data());
     for (int i : velocities_) y[i] += hh * fNew_[i];          // kick
     for (int i : others_) y[i] += hh * (fNew_[i] - f_[i]);    // trapezoidal
     f_.swap(fNew_);
@@ -75,15 +73,15 @@ class FixedVerlet : public Integrator {
     ++stats_.rhsEvaluations;
     stats_.lastStep = h;
     std::string why;
-    if (!sys_.healthy(t_ + h, y, why)) throw IntegrationError(t_ + h, why);
+    if (!sys_.healthy(tNext, y, why)) throw IntegrationError(tNext, why);
   }
 
   OdeSystem& sys_;
-  IntegratorSettings settings_;
   std::vector<double> y_, f_, fNew_;
   std::vector<std::pair<int, int>> positions_;
   std::vector<int> velocities_, others_;
-  double t_ = 0.0;
+  TimeGrid grid_;     // t0 (the last reset) + k h
+  long long k_ = 0;   // grid index of the state y_
   IntegratorStats stats_;
 };
 

@@ -40,7 +40,7 @@ class OdeSystem {
 struct IntegratorSettings {
   std::string method = "arkode-erk";  // see integratorNames()
   double rtol = 1e-5;                 // adaptive methods
-  double fixedStep = 2e-6;            // fixed-step methods [s]
+  double fixedStep = 2e-6;            // fixed-step methods: the step, exactly [s]
   double maxStep = 0.0;               // adaptive: 0 = unlimited
   std::string erkTable = "ARKODE_DORMAND_PRINCE_7_4_5";
   bool stopAtOutputs = false;         // never step past an output time (co-simulation)
@@ -106,9 +106,14 @@ class Integrator {
  public:
   virtual ~Integrator() = default;
   /// (Re)starts from state y0 at t0 (after construction, an FMU state restore, or an impact).
+  /// Fixed-step methods step on the grid t0 + k fixedStep() from here (time_grid.h).
   virtual void reset(double t0, const double* y0) = 0;
-  /// Integrates to tout, writing the state at tout into y. Throws IntegrationError.
+  /// Integrates to tout, writing the state at tout into y. Throws IntegrationError. Fixed-step
+  /// methods integrate to the point of their grid that time_grid.h's rule assigns to tout (a
+  /// caller on the same grid asks for grid points only).
   virtual void advance(double tout, double* y) = 0;
+  /// The step of a fixed-step method; 0 for adaptive methods.
+  virtual double fixedStep() const { return 0.0; }
   virtual IntegratorStats stats() const = 0;
   virtual std::string name() const = 0;
   /// First step to try after the next reset (adaptive methods); 0 lets the method choose.

@@ -10,6 +10,7 @@ namespace chaindrive::ns {
 MoreauJean::MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s)
     : NonsmoothMethod(sys.size()), sys_(sys), settings_(s), minv_(sys.inverseMass()), n_(sys.size()) {
   if (!(s.step > 0.0)) throw std::invalid_argument("time-stepping needs a positive step");
+  grid_.unit = s.step;
   if (!s.recordLcpDirectory.empty()) solver_.record(s.recordLcpDirectory, s.recordLcpCount);
   qm_.assign(n_, 0.0);
   h_.assign(n_, 0.0);
@@ -21,6 +22,8 @@ MoreauJean::MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s)
 
 void MoreauJean::reset(double t, const double* q, const double* v) {
   t_ = t;
+  grid_.start = t;
+  k_ = 0;
   std::copy(q, q + n_, q_.begin());
   std::copy(v, v + n_, v_.begin());
   forces_.clear();
@@ -30,13 +33,11 @@ void MoreauJean::reset(double t, const double* q, const double* v) {
 }
 
 void MoreauJean::advance(double tout) {
-  const double span = tout - t_;
-  if (span <= 0.0) return;
-  const long nSteps = std::max(1L, static_cast<long>(std::ceil(span / settings_.step * (1.0 - 1e-12))));
-  const double h = span / static_cast<double>(nSteps);
-  for (long k = 0; k < nSteps; ++k) {
-    step(h);
-    t_ = k + 1 == nSteps ? tout : t_ + h;
+  // whole steps of exactly h on the grid from the last reset (step times t0 + k h)
+  const long long target = grid_.indexOf(tout);
+  for (; k_ < target; ++k_) {
+    step(grid_.unit);
+    t_ = grid_.time(k_ + 1);
   }
 }
 

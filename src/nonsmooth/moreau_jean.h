@@ -17,11 +17,12 @@
 #include "nonsmooth/formulations.h"
 #include "nonsmooth/method.h"
 #include "nonsmooth/system.h"
+#include "time_grid.h"
 
 namespace chaindrive::ns {
 
 struct MoreauJeanSettings {
-  double step = 1e-5;          // [s] longest step; each advance() interval is divided equally
+  double step = 1e-5;          // [s] the step, exactly: advance() steps on the grid t0 + k step
   bool staticFriction = true;  // use muStatic for contacts that stuck in the previous step
   double gapTolerance = 1e-10; // [m] a contact is active when its predicted gap is below this
                                // (keeps resting contacts active against rounding)
@@ -35,8 +36,10 @@ class MoreauJean : public NonsmoothMethod {
  public:
   MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s);
   void reset(double t, const double* q, const double* v) override;
-  /// Steps to tout (the interval divided into equal steps of at most the step setting).
+  /// Steps to the point of the grid t0 + k step (t0: the last reset) that time_grid.h's rule
+  /// assigns to tout.
   void advance(double tout) override;
+  double stepSize() const { return grid_.unit; }
 
  private:
   void step(double h);
@@ -52,6 +55,8 @@ class MoreauJean : public NonsmoothMethod {
   std::vector<const Bilateral*> bil_;
   std::vector<double> bB_;
   std::vector<long long> stuck_;      // ids of contacts that stuck in the last step (sorted)
+  TimeGrid grid_;                     // t0 (the last reset) + k step
+  long long k_ = 0;                   // grid index of the state
 };
 
 }  // namespace chaindrive::ns

@@ -153,13 +153,13 @@ TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
   opt.integrator.fixedStep = 2.5e-6;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
-  sim.restart(0.0, 0.0);
+  sim.restart(0.0);
   sim.advanceTo(1e-4);
   (void)sim.outputs();
   double t = 1e-4;
   const long n = chaindrive::test::countAllocations([&] {
     for (int k = 0; k < 20; ++k) {
-      sim.restart(t, 0.0);
+      sim.restart(0.0);
       t += 1e-4;
       sim.advanceTo(t);
       (void)sim.outputs().tensionerForce;

@@ -254,25 +254,6 @@ def test_runs_with_no_stop_time_and_variable_steps():
     s.close()
 
 
-def test_libcosim_gives_the_same_outputs_as_fmpy():
-    """A second, independent importer (libcosim, on FMI Library): bit-identical outputs for the
-    same inputs and communication points, with time-varying inputs."""
-    pytest.importorskip("libcosimpy")
-    from harness import cosim
-
-    def inputs_at(k):
-        t = k * 1e-4
-        return {"crankshaft.w": W2000 * (1.0 + 0.01 * np.sin(2 * W2000 * t)),
-                "camshaftIntake.tau": 3.0 + 10.0 * np.sin(2 * W2000 * t),
-                "camshaftExhaust.tau": 2.0 + 8.0 * np.sin(2 * W2000 * t + 1.0)}
-
-    names = ["tensioner.F", "tensionGuide.phi", "chain.Ftight", "chain.Fslack", "camshaftIntake.phi", "crankshaft.tau"]
-    a = cosim.run(inputs_at, 40, 100_000, names)
-    b = cosim.run_fmpy_like_libcosim(inputs_at, 40, 100_000, names)
-    assert np.all(np.isfinite(a))
-    assert np.array_equal(a, b), np.abs(a - b).max()
-
-
 def test_contact_method_parameter_selects_time_stepping():
     """Rigid contacts by Moreau-Jean time stepping through the FMU: 1 ms runs with finite,
     plausible outputs and differs from the compliant run (a different contact model)."""

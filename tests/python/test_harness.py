@@ -40,17 +40,20 @@ def test_failure_is_reported_not_hidden(tmp_path):
     assert "blow-up" in s["failure"] or "non-finite" in s["failure"]
 
 
-def test_step_longer_than_the_output_interval_is_reported(tmp_path):
-    # the fixed-step schemes never step past an output time: a longer step is shortened to the
-    # output interval, and the runner says so (stderr) and writes the step it took (summary)
-    summary = tmp_path / "s.json"
+def test_output_step_is_rounded_to_whole_grid_steps(tmp_path):
+    # the fixed-step schemes take whole steps of exactly the step on the grid t0 + k h: an output
+    # step that is not a whole number of steps is rounded to one, and the runner says so
+    # (stderr) and writes the steps it used (summary); 20 us of 4 us steps with outputs asked
+    # every 6 us: outputs every 8 us (2 steps), the last at 16 us
+    summary, out = tmp_path / "s.json", tmp_path / "o.csv"
     p = subprocess.run([paths.executable("chaindrive-run"), "--integrator", "fixed-verlet", "--step", "4e-6",
-                        "--output-step", "2e-6", "--duration", "2e-5", "--summary", str(summary), "--quiet"],
-                       capture_output=True, text=True)
+                        "--output-step", "6e-6", "--duration", "2e-5", "--summary", str(summary), "--out", str(out),
+                        "--quiet"], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
-    assert "exceeds the output interval" in p.stderr
+    assert "not a whole number of grid steps" in p.stderr
     s = json.loads(summary.read_text())
-    assert s["effectiveStep"] == pytest.approx(2e-6, rel=1e-12) and s["steps"] == 10
+    assert s["step"] == 4e-6 and s["outputStep"] == pytest.approx(8e-6, rel=1e-12) and s["steps"] == 4
+    assert np.allclose(runs.read_csv(out)["time"], [0.0, 8e-6, 16e-6], rtol=0, atol=1e-15)
 
 
 def test_drive_picture(tmp_path):
