@@ -3,7 +3,8 @@
 // method and prints the status, the number of pivots, the error and z.
 //
 // Exit codes: 0 solved; 1 ray termination, iteration limit or numerical failure (the status is
-// still printed); 2 bad arguments or an unreadable file.
+// still printed; an iteration limit also gets a line on stderr with the pivots and the cap);
+// 2 bad arguments or an unreadable file.
 #include <time.h>
 
 #include <algorithm>
@@ -26,8 +27,9 @@ static void usage(std::FILE* out) {
       "  (r_N, r_T per contact) are printed after z.\n"
       "  Prints: status, pivots, error, then z one value per line (full precision). With --repeat N\n"
       "  the problem is solved N times and the median CPU time per solve is printed as well.\n"
-      "  Exit code: 0 solved; 1 ray termination, iteration limit, numerical failure; 2 bad\n"
-      "  arguments or unreadable file.\n",
+      "  --max-pivots N caps the pivots (default max(10000, 100 n^2) for a problem of size n).\n"
+      "  Exit code: 0 solved; 1 ray termination, iteration limit (also reported on stderr with\n"
+      "  the pivots and the cap), numerical failure; 2 bad arguments or unreadable file.\n",
       out);
 }
 
@@ -131,6 +133,12 @@ int main(int argc, char** argv) {
     lcpToForces(fp, z, forces);
     std::printf("r (r_N r_T per contact):\n");
     for (int c = 0; c < fp.contacts(); ++c) std::printf("%.17g %.17g\n", forces(2 * c), forces(2 * c + 1));
+  }
+  if (r.status == Status::IterationLimit) {
+    // on stderr, so that the result format on stdout stays the same; after it in a shared log
+    std::fflush(stdout);
+    std::fprintf(stderr, "chaindrive-lcp: %s\n",
+                 iterationLimitMessage(r, static_cast<int>(q.size()), "raise it with --max-pivots").c_str());
   }
   return r.status == Status::Solved ? 0 : 1;
 }

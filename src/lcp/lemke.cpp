@@ -29,6 +29,10 @@ constexpr int kRefactorInterval = 50;
 // A basis that Lemke's method ends with is accepted as a solution only if its error (see
 // lemke.h) is below this; above it the basis was numerically singular (NumericalFailure).
 constexpr double kAcceptedError = 1e-8;
+// The default pivot cap (lemke.h, "Pivot cap"): never below Siconos' default for
+// lcp_lexicolemke, growing as this factor times n^2 so that a capped run costs O(n^4).
+constexpr long long kSiconosMaxPivots = 10000;
+constexpr long long kPivotsPerSquaredSize = 100;
 
 double naturalMapError(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
                        const Eigen::Ref<const Eigen::VectorXd>& z) {
@@ -85,8 +89,18 @@ void LemkeSolver::reserve(int n) {
 }
 
 int LemkeSolver::defaultMaxPivots(int n) noexcept {
-  const long long v = std::max(1000LL, 50LL * n);
-  return static_cast<int>(std::min<long long>(v, std::numeric_limits<int>::max()));
+  constexpr long long intMax = std::numeric_limits<int>::max();
+  const long long size = std::max(n, 0);
+  // n^2 clamped first so that the product cannot overflow for any int n
+  const long long squaredSize = std::min(size * size, intMax);
+  const long long cap = std::max(kSiconosMaxPivots, kPivotsPerSquaredSize * squaredSize);
+  return static_cast<int>(std::min(cap, intMax));
+}
+
+std::string iterationLimitMessage(const Result& r, int n, const std::string& howToRaise) {
+  return "LCP iteration limit: " + std::to_string(r.pivots) + " pivots without a solution (cap " +
+         std::to_string(r.maxPivots) + " for n = " + std::to_string(n) +
+         (howToRaise.empty() ? std::string() : "; " + howToRaise) + ")";
 }
 
 Result LemkeSolver::solve(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -281,6 +295,7 @@ Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen:
   const int n = static_cast<int>(q.size());
   Result res;
   if (maxPivots < 0) maxPivots = defaultMaxPivots(n);
+  res.maxPivots = maxPivots;
   if (n == 0) {
     res.status = Status::Solved;
     return res;

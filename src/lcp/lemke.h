@@ -36,6 +36,19 @@
 // (z = 0); every other solved problem takes at least 1. `maxPivots` caps the same count: a
 // problem solved in exactly maxPivots pivots is Solved.
 //
+// Pivot cap. In exact arithmetic the lexicographic rule never returns to a basis, so the method
+// ends within n 2^(n-1) pivots (the number of almost-complementary bases), and Murty's example
+// shows that 2^n - 1 can be needed: no polynomial cap covers every problem. The cap is a guard
+// against cycling in floating point (ties that rounding resolves inconsistently), not a bound of
+// the method. The default, max(10000, 100 n^2), never goes below Siconos' default for
+// lcp_lexicolemke (10000) and grows with n so that a capped run costs O(n^4): a pivot costs
+// O(n^2) (the entering column, the ratio test and the rank-one update; the refactorization every
+// 50 pivots, O(n^3), adds O(n^2) per pivot). Measured (Release build, AMD EPYC): a run stopped
+// by the default cap at n = 100 (Murty's example, 10^6 pivots) takes 10 s of CPU, 10 us per
+// pivot as on the drive's LCPs of that size, which end in about 100 pivots; Murty n = 14 takes
+// 4.4 ms. The default solves Murty's example up to n = 14 (16383 pivots, cap 19600); n = 15
+// (32767 pivots, cap 22500) needs an explicit cap.
+//
 // Error. error = ||z - max(0, z - (M z + q))||_2 / ||q||_2 (the natural-map residual used by
 // Siconos; the plain norm if ||q||_2 is below machine epsilon).
 //
@@ -59,7 +72,7 @@ namespace chaindrive::lcp {
 enum class Status {
   Solved,            ///< z solves the LCP (z0 left the basis); see Result::error
   RayTermination,    ///< the entering column has no positive entry: Lemke finds no solution
-  IterationLimit,    ///< maxPivots pivots done without a solution
+  IterationLimit,    ///< maxPivots pivots done without a solution (see iterationLimitMessage)
   NumericalFailure,  ///< non-finite data or values, a numerically singular basis, or an end basis
                      ///< whose error exceeds 1e-8
 };
@@ -71,7 +84,13 @@ struct Result {
   Status status = Status::NumericalFailure;
   int pivots = 0;      ///< pivots after the initial one (see the convention above)
   double error = 0.0;  ///< the natural-map error of the returned z (NaN for non-finite data)
+  int maxPivots = 0;   ///< the cap in force: maxPivots, or defaultMaxPivots(n) if maxPivots < 0
 };
+
+/// The report of a capped run of size n, for IterationLimit: "LCP iteration limit: P pivots
+/// without a solution (cap C for n = N; <howToRaise>)", e.g. howToRaise "raise it with
+/// --max-pivots" (the part after the semicolon is left out if howToRaise is empty).
+std::string iterationLimitMessage(const Result& r, int n, const std::string& howToRaise);
 
 /// Lemke's method with lexicographic degeneracy resolution; an object holds the work arrays so
 /// that repeated solves (one per time step) allocate nothing.
@@ -86,8 +105,8 @@ class LemkeSolver {
   void reserve(int n);
   int capacity() const noexcept { return capacity_; }
 
-  /// The pivot cap used when maxPivots < 0: max(1000, 50 n). Murty's example needs 2^n - 1
-  /// pivots: pass maxPivots explicitly for it beyond n = 9.
+  /// The pivot cap used when maxPivots < 0: max(10000, 100 n^2), at most INT_MAX (see "Pivot
+  /// cap" above). Murty's example needs 2^n - 1 pivots: pass maxPivots for it beyond n = 14.
   static int defaultMaxPivots(int n) noexcept;
 
   /// Solves LCP(M, q). M must be n x n and q of size n (else std::invalid_argument); z is

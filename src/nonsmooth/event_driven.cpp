@@ -119,7 +119,7 @@ bool EventDriven::accelerations(double t, const double* q, const double* v, bool
       ids += (ids.empty() ? "" : ", ") + std::to_string(r.contact->id) +
              (r.kind == RowKind::SlidingFolded ? " (sliding)" : r.kind == RowKind::Friction ? " (sticking)" : "");
     lastFailure_ = std::string("acceleration LCP of size ") + std::to_string(s.size) + " has no solution found by Lemke (" +
-                   lcp::statusName(s.status) + ") for the closed contacts " + ids +
+                   statusText(s) + ") for the closed contacts " + ids +
                    (s.status == lcp::Status::RayTermination
                         ? ": the contact problem is inconsistent (no or several solutions, as in the Painleve paradox)"
                         : "");
@@ -289,7 +289,7 @@ void EventDriven::impact(double t) {
     countSolve(stats_, s);
     if (!s.solved())
       throw IntegrationError(t, std::string("impact LCP of size ") + std::to_string(s.size) + " not solved: " +
-                                    lcp::statusName(s.status));
+                                    statusText(s));
     for (std::size_t k = 0; k < rows_.size(); ++k) addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), v_.data());
     for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), v_.data());
     ++stats_.impacts;
@@ -324,7 +324,7 @@ void EventDriven::impact(double t) {
       const ConstraintSolution& s2 = solver_.solve(others, eq, beq, minv_.data(), settings_.maxPivots);
       countSolve(stats_, s2);
       if (!s2.solved())
-        throw IntegrationError(t, std::string("closing (plastic) impact LCP not solved: ") + lcp::statusName(s2.status));
+        throw IntegrationError(t, std::string("closing (plastic) impact LCP not solved: ") + statusText(s2));
       for (std::size_t k = 0; k < others.size(); ++k) addImpulse(others[k].contact->wN, s2.fN[k], minv_.data(), v_.data());
       for (std::size_t k = 0; k < eq.size(); ++k) addImpulse(eq[k]->w, s2.fB[k], minv_.data(), v_.data());
     }

@@ -117,6 +117,7 @@ const ConstraintSolution& ConstraintSolver::solve(const std::vector<ContactRow>&
       sol_.status = res.status;
       sol_.pivots += res.pivots;
       sol_.error = res.error;
+      sol_.last = res;
       if (res.status == lcp::Status::Solved) break;
       // a failed LCP is always kept when recording is on, for offline study
       if (!recordDir_.empty()) writeLcp(recordDir_ + "/lcp_failed_" + std::to_string(failed_++) + ".dat", nc, nb);

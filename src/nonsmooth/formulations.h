@@ -42,8 +42,18 @@ struct ConstraintSolution {
   std::vector<double> fB;       // per bilateral constraint
   std::vector<char> sticking;   // Friction rows: inside the cone (xi = 0)
   bool regularized = false;     // solved only after the regularization (see ConstraintSolver)
+  lcp::Result last;             // Lemke's result of the last attempt (its pivots and cap)
   bool solved() const { return status == lcp::Status::Solved; }
 };
+
+/// The status of a solution for failure messages: the Lemke status name (which failureKind()
+/// reads), and for an iteration limit the pivots and the cap of the last attempt.
+inline std::string statusText(const ConstraintSolution& s) {
+  std::string text = lcp::statusName(s.status);
+  if (s.status == lcp::Status::IterationLimit)
+    text += " (" + lcp::iterationLimitMessage(s.last, s.size, "raise it with maxPivots in the method's settings") + ")";
+  return text;
+}
 
 /// Adds one solve to the counters.
 inline void countSolve(NsStats& st, const ConstraintSolution& s) {

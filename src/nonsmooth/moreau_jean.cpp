@@ -83,7 +83,7 @@ void MoreauJean::step(double h) {
     countSolve(stats_, s);
     if (!s.solved())
       throw IntegrationError(t_, std::string("velocity LCP of size ") + std::to_string(s.size) + " not solved: " +
-                                     lcp::statusName(s.status));
+                                     statusText(s));
     for (std::size_t k = 0; k < rows_.size(); ++k) {
       addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), vnew_.data());
       addImpulse(rows_[k].contact->wT, s.fT[k], minv_.data(), vnew_.data());

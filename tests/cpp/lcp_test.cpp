@@ -17,6 +17,7 @@
 #include <limits>
 #include <ostream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -282,6 +283,31 @@ TEST(LcpMurty, ExponentialPivotCountAndSolution) {
   }
 }
 
+// The default cap, max(10000, 100 n^2), solves Murty's example for n = 12 and 14 (4095 and 16383
+// pivots under caps of 14400 and 19600) with the exact solution; n = 15 (32767 pivots) exceeds
+// its cap of 22500 and stops after exactly that many. No maxPivots is passed anywhere here.
+TEST(LcpMurty, DefaultCapSolvesSizes12And14) {
+  LemkeSolver solver(15);
+  MatrixXd M;
+  VectorXd q, z;
+  for (int n : {12, 14}) {
+    murty(n, M, q);
+    const Result r = solver.solve(M, q, z);
+    ASSERT_EQ(r.status, Status::Solved) << "n = " << n;
+    EXPECT_EQ(r.pivots, (1 << n) - 1) << "n = " << n;
+    EXPECT_EQ(r.maxPivots, LemkeSolver::defaultMaxPivots(n)) << "n = " << n;
+    VectorXd zExact = VectorXd::Zero(n);
+    zExact(n - 1) = std::ldexp(1.0, n);
+    EXPECT_EQ(z, zExact) << "n = " << n;
+    EXPECT_EQ(r.error, 0.0) << "n = " << n;
+  }
+  murty(15, M, q);
+  const Result r = solver.solve(M, q, z);
+  EXPECT_EQ(r.status, Status::IterationLimit);
+  EXPECT_EQ(r.pivots, 22500);
+  EXPECT_EQ(r.maxPivots, 22500);
+}
+
 // The generator reproduces lcp_exp_murty2.dat (n = 6) exactly.
 TEST(LcpMurty, GeneratorMatchesTheCollectionFile) {
   const Problem p = readLcpFile(dataPath("lcp_exp_murty2.dat"));
@@ -296,7 +322,8 @@ TEST(LcpMurty, GeneratorMatchesTheCollectionFile) {
 // Limits and failures
 
 // Murty n = 10 needs 1023 pivots: a cap of 100 stops after exactly 100 (and one below the count
-// for n = 6 stops too), reporting IterationLimit with the last iterate, which is no solution.
+// for n = 6 stops too), reporting IterationLimit with the last iterate, which is no solution, the
+// cap in force and a message with both.
 TEST(LcpLimits, IterationLimitIsHonoured) {
   MatrixXd M;
   VectorXd q, z;
@@ -305,7 +332,11 @@ TEST(LcpLimits, IterationLimitIsHonoured) {
   Result r = solver.solve(M, q, z, 100);
   EXPECT_EQ(r.status, Status::IterationLimit);
   EXPECT_EQ(r.pivots, 100);
+  EXPECT_EQ(r.maxPivots, 100);
   EXPECT_GT(r.error, 0.0);
+  EXPECT_EQ(iterationLimitMessage(r, 10, "raise it with --max-pivots"),
+            "LCP iteration limit: 100 pivots without a solution (cap 100 for n = 10; raise it with --max-pivots)");
+  EXPECT_EQ(iterationLimitMessage(r, 10, ""), "LCP iteration limit: 100 pivots without a solution (cap 100 for n = 10)");
   murty(6, M, q);
   r = solver.solve(M, q, z, 62);
   EXPECT_EQ(r.status, Status::IterationLimit);
@@ -313,11 +344,25 @@ TEST(LcpLimits, IterationLimitIsHonoured) {
   r = solver.solve(M, q, z, 0);
   EXPECT_EQ(r.status, Status::IterationLimit);
   EXPECT_EQ(r.pivots, 0);
-  // the default cap, max(1000, 50 n), is enough for n = 6 (63 pivots)
+  // the default cap is enough for n = 6 (63 pivots)
   r = solver.solve(M, q, z);
   EXPECT_EQ(r.status, Status::Solved);
-  EXPECT_EQ(LemkeSolver::defaultMaxPivots(6), 1000);
-  EXPECT_EQ(LemkeSolver::defaultMaxPivots(100), 5000);
+  EXPECT_EQ(r.maxPivots, 10000);
+}
+
+// The default cap: max(10000, 100 n^2) (Siconos' 10000 up to n = 10), at most INT_MAX.
+TEST(LcpLimits, DefaultCapGrowsWithTheSquaredSize) {
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(0), 10000);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(1), 10000);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(6), 10000);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(10), 10000);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(11), 12100);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(12), 14400);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(14), 19600);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(100), 1000000);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(4634), 2147395600);
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(4635), std::numeric_limits<int>::max());
+  EXPECT_EQ(LemkeSolver::defaultMaxPivots(std::numeric_limits<int>::max()), std::numeric_limits<int>::max());
 }
 
 // NaN or infinite data: NumericalFailure, z = 0, NaN error; never a "solution".
@@ -849,6 +894,10 @@ TEST(LcpCli, PrintsTheResultAndUsesTheExitCodes) {
   r = runCli("'" + dataPath("lcp_exp_murty2.dat") + "' --max-pivots 10");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("status: IterationLimit\npivots: 10\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("chaindrive-lcp: LCP iteration limit: 10 pivots without a solution (cap 10 for n = 6; "
+                       "raise it with --max-pivots)\n"),
+            std::string::npos)
+      << r.out;
 
   r = runCli("--fc2d '" + dataPath("fc2d/FC2D_SliderCrankLagrangian00000.dat") + "'");
   EXPECT_EQ(r.code, 0) << r.out;
@@ -864,4 +913,41 @@ TEST(LcpCli, PrintsTheResultAndUsesTheExitCodes) {
   EXPECT_EQ(r.code, 2) << r.out;
   r = runCli("'" + dataPath("lcp_deudeu.dat") + "' --frobnicate");
   EXPECT_EQ(r.code, 2) << r.out;
+}
+
+namespace {
+// Murty's example of size n as a file of the Siconos dense format (integers: exact in text).
+std::string writeMurtyFile(int n) {
+  MatrixXd M;
+  VectorXd q;
+  murty(n, M, q);
+  std::ostringstream text;
+  text.precision(17);
+  text << n << "\n0\n" << n << "\n" << n << "\n" << n << " " << n << "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) text << M(i, j) << (i + 1 == n ? "\n" : " ");
+  for (int i = 0; i < n; ++i) text << q(i) << (i + 1 == n ? "\n" : " ");
+  text << "Murty's exponential example, n = " << n << "\n";
+  return writeTemp("murty" + std::to_string(n) + ".dat", text.str());
+}
+}  // namespace
+
+// The default cap on the command line: Murty n = 12 (4095 pivots) is solved; n = 15 (32767
+// pivots) stops at its cap of 22500 with exit code 1, the status and pivots on stdout and the
+// pivots and the cap on stderr.
+TEST(LcpCli, DefaultCapSolvesMurty12AndReportsACappedRun) {
+  if (!std::filesystem::exists(cliPath())) GTEST_SKIP() << "chaindrive-lcp not found at " << cliPath();
+  CliRun r = runCli("'" + writeMurtyFile(12) + "'");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("status: Solved\npivots: 4095\nerror: 0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n4096\n"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("iteration limit"), std::string::npos) << r.out;
+
+  r = runCli("'" + writeMurtyFile(15) + "'");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("status: IterationLimit\npivots: 22500\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("chaindrive-lcp: LCP iteration limit: 22500 pivots without a solution (cap 22500 for "
+                       "n = 15; raise it with --max-pivots)\n"),
+            std::string::npos)
+      << r.out;
 }
