@@ -1,9 +1,17 @@
 """The main job: a scene run through ChainDrive.fmu with the measured-torque tables.
 
-Runs a drive (default: the FMU's default drive) at a mean engine speed for a number of engine
-cycles, driven by the camshaft-torque and crankshaft-speed tables of harness/data (synthesized,
-see harness/data/README.md), writes all outputs as CSV, makes the plots engineers read and prints
-a summary.
+Runs a drive (default: the FMU's default drive) at a mean engine speed, driven by the
+camshaft-torque and crankshaft-speed tables of harness/data (synthesized, see
+harness/data/README.md), writes all outputs as CSV, makes the plots engineers read and reports
+every headline quantity as a mean over engine cycles with its 95 % confidence half-width
+(harness/cycle_stats.py), printed and written to summary.json.
+
+Run-in: the run starts from the kinetostatic preload; the first engine cycles carry the start
+transient and the creep of the tension guide from the static to the dynamic mean of the chain
+forces (set by the tensioner's retraction damping: about 50 ms at 3000 rpm, 100 ms at 6000
+rpm). The run-in, the smallest whole number of engine cycles that is at least 2 cycles and at
+least 0.15 s long (4 cycles at 3000 rpm, 8 at 6000 rpm, 2 at 1000 rpm), is discarded; the
+counted cycles (--cycles) follow.
 
 Two couplings:
   closed (default)  the way an engine simulator couples: a master loop (fmpy FMU2Slave) looks the
@@ -12,10 +20,11 @@ Two couplings:
   open              the tables turned into time series at the mean speed and passed to
                     fmpy.simulate_fmu as input.
 
-    python -m harness.main [--rpm 3000] [--cycles 4] [--coupling closed|open] [--step 1e-4]
+    python -m harness.main [--rpm 3000] [--cycles N] [--run-in S] [--coupling closed|open] [--step 1e-4]
                            [--method fixed-verlet] [--solver-step 2.5e-6] [--drive FILE] [--out results]
 """
 import argparse
+import json
 import math
 import pathlib
 import sys
@@ -23,7 +32,11 @@ import time
 
 import numpy as np
 
-from . import fmu, paths, plots, tables
+from . import cycle_stats, drive, fmu, paths, plots, tables
+
+RUN_IN_CYCLES = 2          # the run-in: at least this many engine cycles ...
+RUN_IN_TIME = 0.15         # [s] ... and at least this long
+DEFAULT_CYCLES = 120       # counted engine cycles of the default run (see README: 1 % confidence)
 
 class Progress:
     """A text progress bar on stderr."""
@@ -115,11 +128,14 @@ def write_csv(path, d):
         np.savetxt(f, np.column_stack([d[c] for c in cols]), delimiter=",", fmt="%.10g")
 
 
-def main(argv=None):
+def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
     ap.add_argument("--rpm", type=float, default=3000.0, help="mean engine speed [rpm], 1000-6000 (tables)")
-    ap.add_argument("--cycles", type=float, default=4.0, help="engine cycles (720 deg crank); the first is discarded")
+    ap.add_argument("--cycles", type=int, default=DEFAULT_CYCLES,
+                    help=f"engine cycles (720 deg crank) counted after the run-in (default {DEFAULT_CYCLES})")
+    ap.add_argument("--run-in", type=int, help=f"engine cycles discarded before the first counted one (default: "
+                    f"at least {RUN_IN_CYCLES} and at least {RUN_IN_TIME:g} s)")
     ap.add_argument("--coupling", choices=("closed", "open"), default="closed")
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/data)")
     ap.add_argument("--step", type=float, default=1e-4, help="communication step [s]")
@@ -128,48 +144,70 @@ def main(argv=None):
     ap.add_argument("--rtol", type=float, default=1e-5, help="FMU parameter solver.tolerance")
     ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
     args = ap.parse_args(argv)
+    if args.cycles < 2:
+        ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
+    if args.run_in is not None and args.run_in < 0:
+        ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
+    return args
 
+
+def write_plots(out, d, args, t0):
+    title = f"{args.rpm:g} rpm, {args.coupling} loop, {args.method}"
+    plots.drive_picture(out / "drive.png", args.drive)
+    plots.time_histories(out / "time_histories.png", d, args.rpm, title)
+    plots.spectra(out / "spectra.png", d, args.rpm, t0, title + " (counted cycles)")
+    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0,
+                     drive=args.drive)
+    return [out / n for n in ("drive.png", "time_histories.png", "spectra.png", "link_cycle.png")]
+
+
+def run_in_cycles(rpm):
+    """The default run-in: whole engine cycles, at least RUN_IN_CYCLES and at least RUN_IN_TIME."""
+    return max(RUN_IN_CYCLES, math.ceil(RUN_IN_TIME * rpm / 120.0 - 1e-9))
+
+
+def report(summary, run_in, cpu, duration):
+    """Prints the cycle statistics and the cost; says so when the confidence half-width of the
+    tensioner-force mean exceeds 1 %, with the number of cycles that would bring it to 1 %."""
+    print(f"\nsummary: mean over engine cycles after a run-in of {run_in} cycles, +- the 95 % confidence "
+          f"half-width")
+    for key, s in summary.items():
+        print(cycle_stats.format_line(key, s))
+    F = summary["tensioner.F.mean"]
+    rel = F["ci95"] / abs(F["mean"])
+    if rel > 0.01:
+        need = math.ceil(F["cycles"] * (rel / 0.01) ** 2)
+        print(f"  note: the tensioner-force mean is known to {100 * rel:.2f} %; about {need} cycles give 1 %")
+    print(f"  CPU time {cpu:.2f} s for {duration * 1e3:.1f} ms simulated: {cpu / duration:.2f} CPU s per simulated s "
+          f"(real-time factor, FMU and master loop)")
+
+
+def main(argv=None):
+    args = parse_args(argv)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     cycle = 2.0 * 60.0 / args.rpm
-    duration = args.cycles * cycle
+    run_in = args.run_in if args.run_in is not None else run_in_cycles(args.rpm)
+    # a tenth of a cycle more, so that the last counted cycle is complete with the speed fluctuation
+    duration = (run_in + args.cycles + 0.1) * cycle
     torque = tables.camshaft_torque(args.rpm, args.tables)
     speed = tables.crankshaft_speed(args.rpm, args.tables)
-    print(f"ChainDrive.fmu: {args.drive or 'default drive'}, {args.rpm:g} rpm, {args.cycles:g} engine cycles "
-          f"({duration * 1e3:.1f} ms), {args.coupling}-loop coupling, communication step {args.step * 1e6:g} us, "
-          f"{args.method}")
+    print(f"ChainDrive.fmu: {args.drive or 'default drive'}, {args.rpm:g} rpm, run-in {run_in} + "
+          f"{args.cycles} engine cycles ({duration * 1e3:.1f} ms), {args.coupling}-loop coupling, communication "
+          f"step {args.step * 1e6:g} us, {args.method}")
     print(f"tables: {torque.path} ({torque.provenance})")
     cpu0 = time.process_time()
     d = run_closed(args, duration, torque, speed) if args.coupling == "closed" else run_open(args, duration, torque, speed)
     cpu = time.process_time() - cpu0
     csv = out / "outputs.csv"
     write_csv(csv, d)
-
-    t0 = cycle  # discard the first engine cycle (start transient)
-    sel = plots.periodic_window(d["time"], t0)
-    title = f"{args.rpm:g} rpm, {args.coupling} loop, {args.method}"
-    plots.drive_picture(out / "drive.png", args.drive)
-    plots.time_histories(out / "time_histories.png", d, args.rpm, title)
-    plots.spectra(out / "spectra.png", d, args.rpm, t0, title + " (after the first cycle)")
-    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0,
-                     drive=args.drive)
-
-    F = d["tensioner.F"][sel]
-    orders_F = plots.dominant_orders(d["time"][sel], F, args.rpm)
-    orders_phi = plots.dominant_orders(d["time"][sel], d["tensionGuide.phi"][sel], args.rpm)
-    print(f"\nsummary (engine cycles 2..{args.cycles:g})")
-    print(f"  tensioner force: mean {F.mean():.1f} N, peak-to-peak {np.ptp(F):.1f} N (min {F.min():.1f}, max {F.max():.1f})")
-    print(f"  tight span: mean {np.nanmean(d['chain.Ftight'][sel]):.1f} N, max {np.nanmax(d['chain.Ftight'][sel]):.1f} N; "
-          f"slack span: mean {np.nanmean(d['chain.Fslack'][sel]):.1f} N")
-    print(f"  tension guide: mean {math.degrees(d['tensionGuide.phi'][sel].mean()):.3f} deg, peak-to-peak "
-          f"{math.degrees(np.ptp(d['tensionGuide.phi'][sel])):.3f} deg")
-    print("  dominant orders, tensioner force: " + ", ".join(f"{o:.2f} ({a:.1f} N)" for o, a in orders_F))
-    print("  dominant orders, tension guide:   " + ", ".join(f"{o:.2f} ({math.degrees(a) * 1e3:.2f} mdeg)"
-                                                             for o, a in orders_phi))
-    print(f"  CPU time {cpu:.2f} s for {duration * 1e3:.1f} ms simulated: {cpu / duration:.2f} CPU s per simulated s "
-          f"(real-time factor, FMU and master loop)")
-    print(f"  outputs: {csv}")
-    print(f"  plots: {out / 'drive.png'}, {out / 'time_histories.png'}, {out / 'spectra.png'}, {out / 'link_cycle.png'}")
+    summary = cycle_stats.summary(d, run_in, drive.meshing_order(drive.drive_json(args.drive)))
+    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    t0 = d["time"][cycle_stats.cycle_spans(d["crankshaft.phi"], run_in)[0][0]]
+    pictures = write_plots(out, d, args, t0)
+    report(summary, run_in, cpu, duration)
+    print(f"  outputs: {csv}, {out / 'summary.json'}")
+    print("  plots: " + ", ".join(str(p) for p in pictures))
 
 
 if __name__ == "__main__":

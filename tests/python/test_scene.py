@@ -1,5 +1,6 @@
 """Scenes through ChainDrive.fmu with the measured-torque tables (synthesized, harness/data)."""
 import argparse
+import json
 import subprocess
 import sys
 
@@ -58,9 +59,21 @@ def test_tensioner_force_spectrum_sits_at_the_engine_orders_of_the_tables(closed
 
 
 def test_main_job_open_loop_quick(tmp_path):
-    p = subprocess.run([sys.executable, "-m", "harness.main", "--coupling", "open", "--cycles", "1.25", "--out",
-                        str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
+    p = subprocess.run([sys.executable, "-m", "harness.main", "--coupling", "open", "--cycles", "3", "--run-in", "1",
+                        "--out", str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
     assert p.returncode == 0, p.stderr + p.stdout
-    assert "tensioner force: mean" in p.stdout and "real-time factor" in p.stdout
-    for name in ("outputs.csv", "drive.png", "time_histories.png", "spectra.png", "link_cycle.png"):
+    assert "tensioner.F.mean" in p.stdout and "real-time factor" in p.stdout
+    for name in ("outputs.csv", "summary.json", "drive.png", "time_histories.png", "spectra.png", "link_cycle.png"):
         assert (tmp_path / name).stat().st_size > 1000, name
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    expected = {"tensioner.F.mean", "tensioner.F.peakToPeak", "chain.Ftight.mean", "chain.Fslack.mean",
+                "tensionGuide.phi.peakToPeak_deg", "camshaftIntake.timing.peakToPeak_degCA",
+                "camshaftExhaust.timing.peakToPeak_degCA"}
+    expected |= {f"tensioner.F.order{k}" for k in (2, 4, 6, 8, 21)}
+    expected |= {f"tensionGuide.phi.order{k}_deg" for k in (2, 4, 6, 8, 21)}
+    assert set(summary) == expected
+    for key, s in summary.items():
+        assert set(s) == {"mean", "ci95", "cycles", "unit"}, key
+        assert s["cycles"] == 3 and np.isfinite(s["mean"]) and s["ci95"] > 0.0, (key, s)
+    # the tight span carries the camshaft torques: its mean force exceeds the slack span's
+    assert summary["chain.Ftight.mean"]["mean"] > summary["chain.Fslack.mean"]["mean"]

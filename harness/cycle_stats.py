@@ -1,0 +1,129 @@
+"""Cycle statistics: what engine engineers compare. The link-level dynamics of the drive is
+chaotic (twin runs that differ by one rounding separate by about a factor e per 2 ms), so a run's
+value at an instant is not reproducible by any other run, but its statistics over engine cycles
+are. Every headline quantity is therefore evaluated once per engine cycle (720 deg crank angle,
+the period of the valve-train loads) and reported as the mean over the counted cycles with its 95 %
+confidence half-width.
+
+Cycles: the engine cycles of the record start where the crankshaft angle passes a multiple of
+720 deg (the tables' origin, firing TDC of cylinder 1); the first cycles, the run-in (the start
+transient and the creep of the tension guide from the static to the dynamic mean, see
+harness/main.py), are discarded. Only whole cycles are counted.
+
+Per cycle: means and peak-to-peak values over the cycle's samples; engine-order amplitudes from
+the cycle resampled at RESAMPLE points uniformly in crankshaft angle (order tracking: a cycle is
+exactly one period, so order k per crankshaft revolution is DFT bin 2 k, without leakage).
+
+Confidence interval: mean +- t_(0.975, n_eff - 1) s / sqrt(n_eff) over the n per-cycle values,
+s their sample standard deviation and n_eff = n (1 - r1) / (1 + r1) when the lag-1
+autocorrelation r1 of successive cycles is positive (the effective number of independent cycles
+of an AR(1) sequence), n otherwise.
+"""
+import math
+
+import numpy as np
+from scipy import stats as scistats
+
+ENGINE_CYCLE = 4.0 * math.pi  # [rad] crankshaft angle of one engine cycle
+ORDERS = (2, 4, 6, 8)         # the engine orders of a four-cylinder engine that matter
+RESAMPLE = 1440               # points per cycle for the order analysis (0.5 deg)
+
+
+def cycle_spans(crank_phi, run_in_cycles):
+    """(first sample, last sample + 1, start angle) of the whole engine cycles after the first
+    run_in_cycles ones (cycle j spans crankshaft angles [j, j + 1) 720 deg); a cycle's samples run
+    from its start up to and including the one at its end."""
+    phi = np.asarray(crank_phi)
+    spans = []
+    j = run_in_cycles
+    while (j + 1) * ENGINE_CYCLE <= phi[-1] + 1e-9:
+        i0 = int(np.searchsorted(phi, j * ENGINE_CYCLE - 1e-9))
+        i1 = int(np.searchsorted(phi, (j + 1) * ENGINE_CYCLE - 1e-9))
+        spans.append((i0, min(i1 + 1, len(phi)), j * ENGINE_CYCLE))
+        j += 1
+    return spans
+
+
+def order_amplitudes(crank_phi, x, phi0, orders):
+    """Amplitudes of the engine orders (per crankshaft revolution) of x over the engine cycle that
+    starts at crankshaft angle phi0, from x resampled uniformly in crankshaft angle."""
+    grid = phi0 + ENGINE_CYCLE * np.arange(RESAMPLE) / RESAMPLE
+    X = np.fft.rfft(np.interp(grid, crank_phi, x)) * 2.0 / RESAMPLE
+    return [float(abs(X[int(round(2 * k))])) for k in orders]
+
+
+def camshaft_timing_deg(d, cam):
+    """Timing deviation of a camshaft [deg crank angle]: twice its angle minus the crankshaft's."""
+    return np.degrees(2.0 * d[cam + ".phi"] - d["crankshaft.phi"])
+
+
+def level_quantities(d):
+    """(key, unit, function of one cycle's sample slice -> value) of the headline levels. The keys
+    name the output and the statistic; non-SI units carry their suffix."""
+    q = [("tensioner.F.mean", "N", lambda s: np.mean(d["tensioner.F"][s])),
+         ("tensioner.F.peakToPeak", "N", lambda s: np.ptp(d["tensioner.F"][s])),
+         ("chain.Ftight.mean", "N", lambda s: np.mean(d["chain.Ftight"][s])),
+         ("chain.Fslack.mean", "N", lambda s: np.mean(d["chain.Fslack"][s])),
+         ("tensionGuide.phi.peakToPeak_deg", "deg", lambda s: np.degrees(np.ptp(d["tensionGuide.phi"][s])))]
+    for cam in ("camshaftIntake", "camshaftExhaust"):
+        if cam + ".phi" in d:
+            timing = camshaft_timing_deg(d, cam)
+            q.append((f"{cam}.timing.peakToPeak_degCA", "deg", lambda s, x=timing: np.ptp(x[s])))
+    return q
+
+
+# signals whose engine-order amplitudes are headline quantities: (output, unit, scale, key suffix)
+ORDER_SIGNALS = (("tensioner.F", "N", 1.0, ""), ("tensionGuide.phi", "deg", 180.0 / math.pi, "_deg"))
+
+
+def per_cycle(d, run_in_cycles, meshing_order):
+    """Per-cycle values of every headline quantity: {key: (unit, array over the counted cycles)};
+    the orders are 2, 4, 6, 8 and the crankshaft meshing order."""
+    spans = cycle_spans(d["crankshaft.phi"], run_in_cycles)
+    cycles = [slice(i0, i1) for i0, i1, _ in spans]
+    out = {key: (unit, np.array([float(f(s)) for s in cycles])) for key, unit, f in level_quantities(d)}
+    orders = list(ORDERS) + [meshing_order]
+    phi = d["crankshaft.phi"]
+    for name, unit, scale, suffix in ORDER_SIGNALS:
+        amps = scale * np.array([order_amplitudes(phi[i0:i1], d[name][i0:i1], phi0, orders) for i0, i1, phi0 in spans])
+        for i, k in enumerate(orders):
+            out[f"{name}.order{k:g}{suffix}"] = (unit, amps[:, i] if len(spans) else np.array([]))
+    return out
+
+
+def lag1_autocorrelation(x):
+    x = np.asarray(x, float) - np.mean(x)
+    den = float(np.dot(x, x))
+    return float(np.dot(x[:-1], x[1:]) / den) if len(x) > 2 and den > 0 else 0.0
+
+
+def interval(values, confidence=0.95):
+    """(mean, confidence half-width, effective number of independent cycles) of per-cycle values;
+    the half-width is NaN for fewer than two cycles."""
+    x = np.asarray(values, float)
+    n = len(x)
+    if n == 0:
+        return math.nan, math.nan, 0.0
+    mean = float(np.mean(x))
+    if n < 2:
+        return mean, math.nan, float(n)
+    r1 = lag1_autocorrelation(x)
+    n_eff = n * (1.0 - r1) / (1.0 + r1) if r1 > 0 else float(n)
+    n_eff = max(n_eff, 1.0 + 1e-9)
+    t = float(scistats.t.ppf(0.5 + 0.5 * confidence, n_eff - 1.0))
+    return mean, t * float(np.std(x, ddof=1)) / math.sqrt(n_eff), n_eff
+
+
+def summary(d, run_in_cycles, meshing_order):
+    """{key: {mean, ci95, cycles, unit}} of every headline quantity (the content of
+    results/summary.json)."""
+    out = {}
+    for key, (unit, values) in per_cycle(d, run_in_cycles, meshing_order).items():
+        mean, half, _ = interval(values)
+        out[key] = {"mean": mean, "ci95": half, "cycles": int(len(values)), "unit": unit}
+    return out
+
+
+def format_line(key, s):
+    rel = 100.0 * s["ci95"] / abs(s["mean"]) if s["mean"] else math.nan
+    return f"  {key:<40} {s['mean']:12.4g} +- {s['ci95']:<10.3g} {s['unit']:<4} ({rel:5.2f} %, {s['cycles']} cycles)"
