@@ -1,61 +1,65 @@
-"""Speed against accuracy: work-precision charts and a stability map of every method.
+"""Speed against accuracy: work-precision charts on cycle statistics and a stability map of every
+method.
 
     python -m harness.study [--quick] [--out DIR] [--jobs N] [--scenes 1000,3000,6000]
 
-Scenes: the default drive at 1000, 3000 and 6000 rpm, open loop with the measured-torque
-tables (harness/tables.py: crankshaft speed fluctuation and camshaft torques over crank angle).
+Scenes: the default drive at 1000, 3000 and 6000 rpm, open loop with the measured-torque tables
+(harness/tables.py: crankshaft speed fluctuation and camshaft torques over crank angle).
 
-1. Start transient: from the pre-loaded state, fixed-verlet at 1 us over max(2 engine cycles,
-   80 ms); its final state is saved at t0, and every run below starts from it (chaindrive-run
-   --initial-state) and runs 20 ms of settling (in which the rigid-contact models find their own
-   equilibrium: with ideal joints the chain cannot stretch, and the tension guide moves by about
-   a degree) and then the measured engine cycle, the same time window for every method.
-2. Reference: arkode-erk at rtol 1e-11; its convergence is shown by the same run at rtol 1e-12
-   (the change is reported in every chart as a dashed line, and the report states per measure
-   whether it is at least ten times below the smallest error plotted).
+Why statistics: the link-level dynamics of the drive is chaotic (impacts of rollers on teeth and
+of link plates on guides): two runs that differ by one rounding grow apart exponentially
+(docs/study/chaos.md), so after a few milliseconds any two solutions, the reference's among them,
+differ at the level of the signal itself. What a method can get right, and what engineers compare,
+are the statistics over engine cycles: means, peak-to-peak values and engine-order amplitudes, each
+known only to within the scatter of the cycles (harness/cycle_stats.py).
+
+1. Start transient: from the pre-loaded state, fixed-verlet at 1 us over the main job's run-in
+   (whole engine cycles, at least 2 and at least 0.15 s); its final state is saved at t0 and every
+   run below starts from it (chaindrive-run --initial-state). Every run then settles for one engine
+   cycle (in which the rigid-contact models find their own equilibrium: with ideal joints the chain
+   cannot stretch) and is measured over the next N whole engine cycles (N: about 0.8 s of engine
+   time, CYCLES_TIME; a quarter of that for the costly rigid-contact methods).
+2. Reference ensemble: arkode-erk at rtol 1e-8 over three times as many cycles; for each headline
+   quantity the mean over its cycles with the 95 % confidence half-width, and the cycle-to-cycle
+   standard deviation (the reference's own scatter). Its convergence is checked by a second, very
+   different accurate method (fixed-verlet at 0.25 us) over the same cycles: their statistics must
+   agree within their intervals.
 3. Every method (contact method x integrator) over a geometric sweep of its step or tolerance:
-   CPU seconds per simulated second (median of up to 3 runs; repeated runs are also checked to
-   be bit-identical) and errors against the reference:
-   - over the measured cycle: RMS and maximum error of the tensioner force and of the
-     tension-guide angle; the error of the tensioner force's RMS level; amplitude error in dB of
-     the tensioner force at engine orders 2, 4, 6, 8 and at the crankshaft meshing order (its
-     number of teeth);
-   - over the first 2 ms after t0 (a short horizon, see below): RMS error of both.
-   A run that fails is a failure marker with the kind the solver reports. Fixed steps are at
-   most the output step (20 us): the fixed-step schemes never step past an output time.
-4. Stability map: each method at its default setting over engine speed, over its step or
+   CPU seconds per simulated second (median of up to 3 runs; repeated runs are also checked to be
+   bit-identical) and, per headline quantity, its error: the difference of its cycle mean from
+   the reference's, in % (levels) or dB (order amplitudes) and in units of the reference's
+   cycle-to-cycle scatter, with z = difference / sqrt(ci_method^2 + ci_reference^2). A statistic
+   is consistent with the reference when |z| <= 1 (within the 95 % interval of the difference); a
+   method is as accurate as the physics allows when all its headline statistics are consistent,
+   jointly at 95 % (Bonferroni: each |z| <= the (1 - 0.05/K) quantile over 1.96 for K statistics).
+   A run that fails is a failure marker with the kind the solver reports.
+4. Convergence order: the short-horizon trajectory error over the first 2 ms after t0 (before the
+   chaotic growth), against arkode-erk at rtol 1e-11, checked at 1e-12.
+5. Stability map: each method at its default setting over engine speed, over its step or
    tolerance, and over joint and contact stiffness (factors on the default drive), from the
    pre-loaded state over 20 ms: ok, or the failure detected by the solver (blow-up, non-finite
    state, tunnelling, LCP ray termination or numerical failure, Newton failure, step-size
-   collapse, runaway events) or the wall-time budget. These runs write no outputs, so their
-   output step is the step itself where the step is longer than 20 us.
-5. Real time: CPU time per fmi2DoStep of ChainDrive.fmu through fmpy's FMU2Slave at fixed
+   collapse, runaway events) or the wall-time budget.
+6. Real time: CPU time per fmi2DoStep of ChainDrive.fmu through fmpy's FMU2Slave at fixed
    communication steps of 100 us and 1 ms, for the fixed-step methods (median, 99th percentile,
    maximum).
 
-Why a short horizon: the link-level dynamics of the drive is chaotic (roller-tooth and
-plate-guide impacts): two runs that differ by rounding grow apart by about a factor e per
-millisecond, so that over a whole engine cycle any two solutions differ at the level of the
-signal itself. Pointwise errors over the cycle therefore measure this sensitivity, not the
-method; the report shows them as asked, with the reference's own change as the floor, and adds
-the 2 ms horizon on which the reference is converged by orders of magnitude.
+Every run writes outputs every 60 us (OUTPUT_STEP): a whole number of steps of every fixed step
+of the sweeps, so that all runs share their output times on the time grid (src/time_grid.h).
 
---quick: 3000 rpm only, a 5 ms transient and a 5 ms measured window (not a full engine cycle),
-reference at rtol 1e-8 (check 1e-9), one or two points per method, a reduced stability map and
-short real-time timings: a smoke test of the whole chain (each method gives a point or a
-reported failure) that runs in CI in about a minute.
+--quick: 6000 rpm (the shortest cycle), a 2-cycle run-in, 2 measured cycles, a reference at rtol 1e-6 over 3 cycles, one or two points per method, a reduced
+stability map and short real-time timings: a smoke test of the whole chain (each method gives a
+point or a reported failure) for CI.
 
 Outputs in DIR (default results/study): report.md, results.json, work-precision charts
 wp_<rpm>rpm.png, stability_<axis>.png, and the CSV of every run under runs/ (not for the
-repository).
+repository). The report is written by harness/study_report.py.
 """
 import argparse
 import concurrent.futures as cf
-import copy
 import datetime
 import json
 import math
-import os
 import pathlib
 import shutil
 import subprocess
@@ -63,34 +67,44 @@ import sys
 import time
 
 import numpy as np
+from scipy import stats as scistats
 
-from . import paths, plots, runs, tables
+from . import cycle_stats, paths, runs, tables
+from .drive import drive_json, meshing_order
+from .main import run_in_cycles
 
-ORDERS = (2, 4, 6, 8)
-SHORT_HORIZON = 2e-3     # [s] window of the short-horizon errors
-OUTPUT_STEP = 2e-5       # [s] output interval of every run (50 kHz: the meshing order at 6000 rpm is 2.1 kHz)
-THRESHOLD_RMS = 1.0      # [%] the "1 % RMS error" of the tensioner force
-SETTLE = 0.02            # [s] every run: settling from the common state before the measured window
+SHORT_HORIZON = 2e-3     # [s] window of the short-horizon (trajectory) errors
+OUTPUT_STEP = 6e-5       # [s] output interval of every run: whole steps of every fixed step below
+THRESHOLD_RMS = 1.0      # [%] the "1 % RMS error" of the tensioner force over the short horizon
+CYCLES_TIME = 0.8        # [s] engine time measured per point (whole cycles, at least MIN_CYCLES)
+MIN_CYCLES = 6
+REFERENCE_FACTOR = 3     # the reference ensemble: this many times the cycles of a point
+RIGID_SHARE = 0.25       # rigid-contact methods (100-3000 CPU s/s): this share of the cycles
+SETTLE_CYCLES = 1        # engine cycles of every run before its measured ones
+# headline statistics of the verdict "as accurate as the physics allows" (levels, then orders)
+VERDICT_KEYS = ["tensioner.F.mean", "tensioner.F.peakToPeak", "chain.Ftight.mean", "chain.Fslack.mean",
+                "tensionGuide.phi.peakToPeak_deg", "tensioner.F.order2", "tensioner.F.order4", "tensioner.F.order6",
+                "tensioner.F.order8"]
 
 # Methods: contact method x integrator (x joint model), each with a sweep of one setting.
 METHODS = [
     dict(id="verlet", label="compliant / fixed-verlet", contact="compliant", integrator="fixed-verlet",
-         option="step", full=[4e-6, 3e-6, 2e-6, 1e-6, 5e-7, 2.5e-7], quick=[2e-6, 1e-6], default=2.5e-6,
+         option="step", full=[4e-6, 3e-6, 2.5e-6, 2e-6, 1e-6, 5e-7], quick=[2e-6, 1e-6], default=2.5e-6,
          stability=[1e-6, 2e-6, 3e-6, 4e-6, 6e-6, 8e-6], fixed=True),
     dict(id="erk-fixed", label="compliant / arkode-erk-fixed", contact="compliant", integrator="arkode-erk-fixed",
-         option="step", full=[4e-6, 2e-6, 1e-6, 5e-7], quick=[2e-6], default=2e-6,
+         option="step", full=[4e-6, 2e-6, 1e-6], quick=[2e-6], default=2e-6,
          stability=[1e-6, 2e-6, 4e-6, 6e-6, 8e-6, 1.2e-5], fixed=True),
     dict(id="erk", label="compliant / arkode-erk", contact="compliant", integrator="arkode-erk",
-         option="rtol", full=[1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8], quick=[1e-4], default=1e-5,
-         stability=[1e-2, 1e-3, 1e-5, 1e-7]),
-    dict(id="bdf-klu", label="compliant / cvode-bdf-klu", contact="compliant", integrator="cvode-bdf-klu",
          option="rtol", full=[1e-3, 1e-4, 1e-5, 1e-6, 1e-7], quick=[1e-4], default=1e-5,
          stability=[1e-2, 1e-3, 1e-5, 1e-7]),
-    dict(id="bdf-band", label="compliant / cvode-bdf-band", contact="compliant", integrator="cvode-bdf-band",
+    dict(id="bdf-klu", label="compliant / cvode-bdf-klu", contact="compliant", integrator="cvode-bdf-klu",
          option="rtol", full=[1e-3, 1e-4, 1e-5, 1e-6], quick=[1e-4], default=1e-5,
          stability=[1e-2, 1e-3, 1e-5, 1e-7]),
+    dict(id="bdf-band", label="compliant / cvode-bdf-band", contact="compliant", integrator="cvode-bdf-band",
+         option="rtol", full=[1e-3, 1e-5], quick=[1e-4], default=1e-5,
+         stability=[1e-2, 1e-3, 1e-5, 1e-7]),
     dict(id="ts", label="time-stepping (rigid contacts)", contact="time-stepping", integrator="fixed-verlet",
-         option="step", full=[3e-6, 2.5e-6, 2e-6, 1e-6], quick=[2.5e-6], default=2.5e-6,
+         option="step", full=[3e-6, 2.5e-6, 1e-6], quick=[2.5e-6], default=2.5e-6,
          stability=[1e-6, 2e-6, 3e-6, 4e-6, 6e-6], fixed=True),
     dict(id="ts-ideal", label="time-stepping, ideal joints", contact="time-stepping", joints="ideal",
          integrator="fixed-verlet", option="step", full=[2e-5, 1e-5, 5e-6], quick=[2e-5], default=2e-5,
@@ -101,32 +115,30 @@ METHODS = [
          integrator="arkode-erk", option="rtol", full=[1e-4, 1e-6], quick=[1e-5], default=1e-5,
          stability=[1e-3, 1e-5, 1e-7]),
 ]
-MARKERS = dict(zip([m["id"] for m in METHODS], "osD^v<>Xp"))
-COLORS = dict(zip([m["id"] for m in METHODS], plots.plt.rcParams["axes.prop_cycle"].by_key()["color"] + ["k"]))
+REFERENCE = dict(id="reference", label="reference: compliant / arkode-erk", contact="compliant",
+                 integrator="arkode-erk", option="rtol")
+REFERENCE_CHECK = dict(id="reference-check", label="reference check: compliant / fixed-verlet", contact="compliant",
+                       integrator="fixed-verlet", option="step")
 
 KIND_CODES = {"blow-up": "BU", "non-finite": "NF", "tunnelling": "TU", "lcp-ray-termination": "RAY",
               "lcp-numerical-failure": "LCP", "lcp-iteration-limit": "LIT", "newton-failure": "NEW",
               "step-size-collapse": "STEP", "runaway-events": "EVT", "timeout": "TIME", "other": "ERR"}
 
 
-# ---------------------------------------------------------------------------------------------
-# runs
-
 def default_drive_json():
-    with open(paths.ROOT / "src" / "drives" / "default_drive.json") as f:
-        return json.load(f)
-
-
-def meshing_order(drive):
-    for s in drive["sprockets"]:
-        if s.get("motion") == "prescribed":
-            return int(s["teeth"])
-    raise ValueError("the drive has no prescribed sprocket")
+    return drive_json()
 
 
 def setting_label(m, v):
     return f"h = {v * 1e6:g} us" if m["option"] == "step" else f"rtol = {v:g}"
 
+
+def is_rigid(m):
+    return m["contact"] != "compliant"
+
+
+# ---------------------------------------------------------------------------------------------
+# runs
 
 def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initial_state=None, drive=None,
                save_state=None, write_csv=True, extra=(), output_step=OUTPUT_STEP):
@@ -169,69 +181,84 @@ def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initi
     return s
 
 
+# ---------------------------------------------------------------------------------------------
+# errors: cycle statistics against the reference ensemble, trajectory over the short horizon
+
+def is_order(key):
+    return ".order" in key
+
+
+def statistics(d, first_cycle, cycles, mesh):
+    """{key: (unit, per-cycle values)} of the first `cycles` whole engine cycles from cycle index
+    first_cycle on (crankshaft angle, harness/cycle_stats.py)."""
+    return {k: (u, v[:cycles]) for k, (u, v) in cycle_stats.per_cycle(d, first_cycle, mesh).items()}
+
+
+def reference_statistics(stats):
+    """{key: {mean, ci95, cycles, sd, unit}} of the reference ensemble; sd is its cycle-to-cycle
+    standard deviation (its own scatter)."""
+    out = {}
+    for key, (unit, v) in stats.items():
+        mean, half, _ = cycle_stats.interval(v)
+        out[key] = dict(mean=mean, ci95=half, cycles=int(len(v)), sd=float(np.std(v, ddof=1)), unit=unit)
+    return out
+
+
+def relative_error(key, value, ref, floor=1e-30):
+    """value against ref: in dB for order amplitudes (value at least floor), in % otherwise."""
+    if is_order(key):
+        return 20.0 * math.log10(max(value, floor, 1e-30) / max(ref, 1e-30))
+    return 100.0 * (value - ref) / abs(ref) if ref else math.nan
+
+
+def compare(stats, ref):
+    """Per headline quantity: the method's cycle mean and half-width, and its error against the
+    reference (% or dB; in units of the reference's scatter; z against the combined interval)."""
+    out = {}
+    for key, (unit, v) in stats.items():
+        r = ref[key]
+        mean, half, _ = cycle_stats.interval(v)
+        combined = math.hypot(half, r["ci95"])
+        out[key] = dict(mean=mean, ci95=half, cycles=int(len(v)), unit=unit,
+                        error=relative_error(key, mean, r["mean"]), errorUnit="dB" if is_order(key) else "%",
+                        # an interval reaching down to zero amplitude is drawn down to -20 dB of the mean
+                        errorLow=relative_error(key, mean - half, r["mean"], floor=0.1 * mean),
+                        errorHigh=relative_error(key, mean + half, r["mean"]),
+                        scatter=(mean - r["mean"]) / r["sd"] if r["sd"] > 0 else math.nan,
+                        z=(mean - r["mean"]) / combined if combined > 0 else math.nan)
+    return out
+
+
+def joint_limit(k):
+    """|z| limit for K statistics to be jointly consistent at 95 % (Bonferroni), in units of the
+    1.96 of a single 95 % interval."""
+    return float(scistats.norm.ppf(1.0 - 0.025 / k) / scistats.norm.ppf(0.975))
+
+
+def as_accurate_as_physics(errors):
+    """All headline statistics of VERDICT_KEYS consistent with the reference, jointly at 95 %."""
+    zs = [errors[k]["z"] for k in VERDICT_KEYS if k in errors]
+    return bool(zs) and all(math.isfinite(z) and abs(z) <= joint_limit(len(zs)) for z in zs)
+
+
 def rms(x):
     return float(np.sqrt(np.mean(np.square(x))))
 
 
-def order_amplitudes(t, x, rpm, orders):
-    o, a = plots.order_spectrum(t, x, rpm)
-    return [float(a[np.argmin(np.abs(o - k))]) for k in orders]
-
-
-def errors(d, ref, rpm, mesh, t0, settle):
-    """Errors of run d against the reference ref (dicts of arrays on the same output times): over
-    the measured window (after t0 + settle) and over the short horizon (from t0)."""
+def short_errors(d, ref, t0):
+    """Trajectory errors over the first SHORT_HORIZON after t0, against the short reference (the
+    same output times on the grid)."""
     n = min(len(d["time"]), len(ref["time"]))
     tt = ref["time"][:n]
-    short = (tt > t0 + 0.5 * OUTPUT_STEP) & (tt <= t0 + SHORT_HORIZON + 0.5 * OUTPUT_STEP)
-    sel = tt > t0 + settle + 0.5 * OUTPUT_STEP
-    t = tt[sel]
-    F, Fr = d["tensioner.F"][:n][sel], ref["tensioner.F"][:n][sel]
-    P, Pr = d["tensionGuide.phi"][:n][sel], ref["tensionGuide.phi"][:n][sel]
-    eF, eP = F - Fr, P - Pr
-    sF = d["tensioner.F"][:n][short] - ref["tensioner.F"][:n][short]
-    sP = d["tensionGuide.phi"][:n][short] - ref["tensionGuide.phi"][:n][short]
-    orders = list(ORDERS) + [mesh]
-    a = order_amplitudes(t, F, rpm, orders)
-    ar = order_amplitudes(t, Fr, rpm, orders)
-    db = [20.0 * math.log10(max(x, 1e-30) / max(y, 1e-30)) for x, y in zip(a, ar)]
-    return {
-        "F_rms_pct": 100.0 * rms(eF) / rms(Fr),
-        "F_level_pct": 100.0 * abs(rms(F) - rms(Fr)) / rms(Fr),
-        "F_mean_pct": 100.0 * abs(float(np.mean(F)) - float(np.mean(Fr))) / abs(float(np.mean(Fr))),
-        "F_max_N": float(np.max(np.abs(eF))),
-        "phi_rms_rad": rms(eP),
-        "phi_max_rad": float(np.max(np.abs(eP))),
-        "orders_dB": dict(zip([str(k) for k in ORDERS], db[:len(ORDERS)])),
-        "orders_maxabs_dB": max(abs(x) for x in db[:len(ORDERS)]),
-        "mesh_dB": db[-1],
-        "short_F_rms_pct": 100.0 * rms(sF) / rms(ref["tensioner.F"][:n][short]),
-        "short_F_max_N": float(np.max(np.abs(sF))),
-        "short_phi_rms_rad": rms(sP),
-    }
-
-
-MEASURES = [  # key, axis label, log scale
-    ("F_rms_pct", "tensioner force: RMS error over the cycle [%]"),
-    ("F_max_N", "tensioner force: max error over the cycle [N]"),
-    ("F_level_pct", "tensioner force: error of its RMS level over the cycle [%]"),
-    ("phi_rms_rad", "tension-guide angle: RMS error over the cycle [rad]"),
-    ("phi_max_rad", "tension-guide angle: max error over the cycle [rad]"),
-    ("orders_maxabs_dB", "tensioner force: largest abs. error at orders 2, 4, 6, 8 [dB]"),
-    ("mesh_abs_dB", "tensioner force: abs. error at the meshing order [dB]"),
-    ("short_F_rms_pct", "tensioner force: RMS error over the first 2 ms [%]"),
-    ("short_phi_rms_rad", "tension-guide angle: RMS error over the first 2 ms [rad]"),
-]
-
-
-def measure_value(e, key):
-    if key == "mesh_abs_dB":
-        return abs(e["mesh_dB"])
-    return e[key]
+    w = (tt > t0 + 0.5 * OUTPUT_STEP) & (tt <= t0 + SHORT_HORIZON + 0.5 * OUTPUT_STEP)
+    eF = d["tensioner.F"][:n][w] - ref["tensioner.F"][:n][w]
+    eP = d["tensionGuide.phi"][:n][w] - ref["tensionGuide.phi"][:n][w]
+    return dict(short_F_rms_pct=100.0 * rms(eF) / rms(ref["tensioner.F"][:n][w]), short_F_max_N=float(np.max(np.abs(eF))),
+                short_phi_rms_rad=rms(eP))
 
 
 # ---------------------------------------------------------------------------------------------
-# one scene: transient, reference, sweeps
+# one scene: transient, references, sweeps
 
 class Study:
     def __init__(self, args):
@@ -239,66 +266,74 @@ class Study:
         self.quick = args.quick
         self.out = pathlib.Path(args.out)
         self.runs_dir = self.out / "runs"
-        self.drive = default_drive_json()
-        self.mesh = meshing_order(self.drive)
+        self.mesh = meshing_order(default_drive_json())
         self.log_lines = []
-        self.timeout = 60.0 if self.quick else args.timeout
+        self.timeout = 120.0 if self.quick else args.timeout
 
     def log(self, s):
         print(s, flush=True)
         self.log_lines.append(s)
 
-    def scene_times(self, rpm):
-        """(start transient, settling phase of every run, measured window) [s]."""
+    def plan(self, rpm):
+        """Engine cycles of the scene: run-in (before t0), measured per point (compliant and
+        rigid), of the reference ensemble."""
         cycle = 120.0 / rpm
         if self.quick:
-            return 5e-3, 0.0, 5e-3
-        return max(2.0 * cycle, 0.08), SETTLE, cycle
+            return dict(cycle=cycle, run_in=2, cycles=2, rigid=2, reference=3)
+        n = max(MIN_CYCLES, int(round(CYCLES_TIME / cycle)))
+        return dict(cycle=cycle, run_in=run_in_cycles(rpm), cycles=n, rigid=max(2, int(round(RIGID_SHARE * n))),
+                    reference=REFERENCE_FACTOR * n)
 
-    def point(self, scene_dir, m, value, rpm, inputs, t_run, settle, state, ref, t0, repeats):
+    def measured_run(self, sd, tag, m, value, rpm, plan, cycles, state, extra=()):
+        """A run from t0 over SETTLE_CYCLES + cycles engine cycles (plus a tenth for the speed
+        fluctuation); returns (summary, data or None)."""
+        duration = (SETTLE_CYCLES + cycles + 0.1) * plan["cycle"]
+        budget = self.timeout * max(1.0, cycles / plan["cycles"])
+        s = run_solver(sd, tag, m, value, rpm, plan["inputs"], duration, budget, initial_state=state, extra=extra)
+        return s, (runs.read_csv(s["csv"]) if s["kind"] == "ok" else None)
+
+    def point(self, sd, m, value, rpm, plan, state, ref, short_ref, t0):
         tag = f"{m['id']}_{value:g}"
-        s = run_solver(scene_dir, tag, m, value, rpm, inputs, t_run, self.timeout, initial_state=state)
-        cpus = [s["cpuSeconds"]]
-        identical = True
-        if s["kind"] == "ok":
-            # repeated runs for the CPU time (median), only while a run is cheap
-            for k in range(1, repeats):
-                if s["cpuSeconds"] > self.args.repeat_below:
-                    break
-                r = run_solver(scene_dir, f"{tag}_r{k}", m, value, rpm, inputs, t_run, self.timeout,
-                               initial_state=state)
-                if r["kind"] != "ok":
-                    identical = False
-                    break
-                cpus.append(r["cpuSeconds"])
-                identical = identical and pathlib.Path(r["csv"]).read_bytes() == pathlib.Path(s["csv"]).read_bytes()
-                pathlib.Path(r["csv"]).unlink()
+        cycles = plan["rigid"] if is_rigid(m) else plan["cycles"]
+        s, d = self.measured_run(sd, tag, m, value, rpm, plan, cycles, state)
+        cpus, identical = self.repeat_timings(sd, tag, m, value, rpm, plan, cycles, state, s)
         p = dict(method=m["id"], label=m["label"], option=m["option"], value=value, kind=s["kind"],
                  failure=s.get("failure"), failureTime=s.get("failureTime"), simulated=s.get("simulated", 0.0),
                  cpu_runs=cpus, cpu=float(np.median(cpus)), repeatsIdentical=identical)
-        p["cpu_per_s"] = p["cpu"] / t_run if s["kind"] != "ok" else p["cpu"] / s["simulated"]
+        p["cpu_per_s"] = p["cpu"] / (s["simulated"] if s["kind"] == "ok" else s["requested"])
         for k in ("steps", "rhsEvaluations", "events", "lcpSolves", "lcpSizeMean", "lcpSizeMax", "pivots",
                   "regularizedLcps"):
             if k in s:
                 p[k] = s[k]
-        if s["kind"] == "ok":
-            d = runs.read_csv(s["csv"])
-            p["errors"] = errors(d, ref, rpm, self.mesh, t0, settle)
+        if d is not None:
+            p["errors"] = compare(statistics(d, plan["run_in"] + SETTLE_CYCLES, cycles, self.mesh), ref)
+            p["errors"].update(short_errors(d, short_ref, t0))
+            p["consistent"] = as_accurate_as_physics(p["errors"])
             if not self.args.keep_csv and not self.quick:
                 pathlib.Path(s["csv"]).unlink()
         return p
 
+    def repeat_timings(self, sd, tag, m, value, rpm, plan, cycles, state, first):
+        """CPU times of repeated runs (median), only while a run is cheap; repeats must be
+        bit-identical to the first run."""
+        cpus, identical = [first["cpuSeconds"]], True
+        repeats = 1 if self.quick else self.args.repeats
+        for k in range(1, repeats):
+            if first["kind"] != "ok" or first["cpuSeconds"] > self.args.repeat_below:
+                break
+            r, _ = self.measured_run(sd, f"{tag}_r{k}", m, value, rpm, plan, cycles, state)
+            if r["kind"] != "ok":
+                return cpus, False
+            cpus.append(r["cpuSeconds"])
+            identical = identical and pathlib.Path(r["csv"]).read_bytes() == pathlib.Path(first["csv"]).read_bytes()
+            pathlib.Path(r["csv"]).unlink()
+        return cpus, identical
+
     def scene(self, rpm):
         done = self.out / f"scene_{rpm:g}rpm.json"
         if self.args.resume and done.exists():
-            sc = json.loads(done.read_text())
             self.log(f"\n## scene {rpm:g} rpm: results of an earlier run ({done.name})")
-            sweeps = {m["id"]: m["quick" if self.quick else "full"] for m in METHODS}
-            kept = [p for p in sc["points"] if any(math.isclose(p["value"], v) for v in sweeps.get(p["method"], []))]
-            for p in sc["points"]:
-                if p not in kept:
-                    self.log(f"  (dropped: {p['label']} at {setting_label(p, p['value'])}, no longer in the sweep)")
-            sc["points"] = kept
+            sc = json.loads(done.read_text())
             for p in sc["points"]:
                 self.log(point_line(p))
             return sc
@@ -306,55 +341,60 @@ class Study:
         done.write_text(json.dumps(sc, indent=1))
         return sc
 
-    def run_scene(self, rpm):
-        t_tr, settle, t_meas = self.scene_times(rpm)
-        t_run = settle + t_meas
-        sd = self.runs_dir / f"{rpm:g}rpm"
-        sd.mkdir(parents=True, exist_ok=True)
-        inputs = tables.write_inputs_csv(sd / "inputs.csv", rpm, t_tr + t_run + 0.01, dt=OUTPUT_STEP)
-        self.log(f"\n## scene {rpm:g} rpm: transient {t_tr * 1e3:.1f} ms, then every run {settle * 1e3:.1f} ms "
-                 f"settling + {t_meas * 1e3:.1f} ms measured")
-        verlet = METHODS[0]
+    def transient(self, sd, rpm, plan):
+        """The start transient from the pre-loaded state over the run-in; returns (state file, t0)."""
         state = sd / "state.json"
-        tr = run_solver(sd, "transient", verlet, 1e-6 if not self.quick else 2e-6, rpm, inputs, t_tr,
-                        10 * self.timeout, save_state=state, write_csv=False)
+        verlet = METHODS[0]
+        tr = run_solver(sd, "transient", verlet, 1e-6 if not self.quick else 2e-6, rpm, plan["inputs"],
+                        plan["run_in"] * plan["cycle"], 10 * self.timeout, save_state=state, write_csv=False)
         if tr["kind"] != "ok":
             raise RuntimeError(f"the start transient failed: {tr.get('failure')}")
-        t0 = json.loads(state.read_text())["time_s"]
-        erk = next(m for m in METHODS if m["id"] == "erk")
-        rtol_ref, rtol_chk = (1e-8, 1e-9) if self.quick else (1e-11, 1e-12)
+        return state, json.loads(state.read_text())["time_s"], tr["cpuSeconds"]
+
+    def references(self, sd, rpm, plan, state, t0):
+        """The reference ensemble and its check (cycle statistics), and the short-horizon reference
+        and its check (trajectories)."""
+        rtol, h_check = (1e-6, 5e-7) if self.quick else (1e-8, 2.5e-7)
+        s_ref, d_ref = self.measured_run(sd, "reference", REFERENCE, rtol, rpm, plan, plan["reference"], state)
+        s_chk, d_chk = self.measured_run(sd, "reference_check", REFERENCE_CHECK, h_check, rpm, plan,
+                                         plan["reference"], state)
+        short_rtol = (1e-8, 1e-9) if self.quick else (1e-11, 1e-12)
         # at these tolerances the steps at contact onsets (kinks of the force laws) go below the
         # default step-size floor of 1e-10 s
         tight = ["--min-step", "1e-15"]
-        ref = run_solver(sd, "reference", erk, rtol_ref, rpm, inputs, t_run, 20 * self.timeout, initial_state=state,
-                         extra=tight)
-        chk = run_solver(sd, "reference_check", erk, rtol_chk, rpm, inputs, t_run, 30 * self.timeout,
-                         initial_state=state, extra=tight)
-        if ref["kind"] != "ok" or chk["kind"] != "ok":
-            raise RuntimeError(f"the reference failed: {ref.get('failure') or chk.get('failure')}")
-        dref = runs.read_csv(ref["csv"])
-        dchk = runs.read_csv(chk["csv"])
-        change = errors(dchk, dref, rpm, self.mesh, t0, settle)
-        win = dref["time"] > t0 + settle + 0.5 * OUTPUT_STEP
-        Fr = dref["tensioner.F"][win]
-        amps = order_amplitudes(dref["time"][win], Fr, rpm, list(ORDERS) + [self.mesh])
-        self.log(f"reference arkode-erk rtol {rtol_ref:g}: {ref['cpuPerSimulatedSecond']:.1f} CPU s/s; "
-                 f"change at rtol {rtol_chk:g}: tensioner RMS {change['F_rms_pct']:.3g} % over the cycle, "
-                 f"{change['short_F_rms_pct']:.3g} % over 2 ms")
-        scene = dict(rpm=rpm, transient=t_tr, settle=settle, measured=t_meas, t0=t0, transientCpu=tr["cpuSeconds"],
-                     reference=dict(method="arkode-erk", rtol=rtol_ref, cpu_per_s=ref["cpuPerSimulatedSecond"],
-                                    check_rtol=rtol_chk, check_cpu_per_s=chk["cpuPerSimulatedSecond"], change=change,
-                                    F_mean=float(Fr.mean()), F_rms=rms(Fr), F_p2p=float(Fr.max() - Fr.min()),
-                                    amplitudes=dict(zip([str(k) for k in ORDERS] + ["mesh"], amps))),
-                     points=[])
-        jobs = []
-        for m in METHODS:
-            values = m["quick"] if self.quick else m["full"]
-            for v in values:
-                jobs.append((m, v))
-        repeats = 1 if self.quick else self.args.repeats
+        shorts = [run_solver(sd, f"short_{r:g}", REFERENCE, r, rpm, plan["inputs"], SHORT_HORIZON,
+                             20 * self.timeout, initial_state=state, extra=tight) for r in short_rtol]
+        failed = [s for s in (s_ref, s_chk, *shorts) if s["kind"] != "ok"]
+        if failed:
+            raise RuntimeError(f"a reference run failed: {failed[0].get('failure')}")
+        first = plan["run_in"] + SETTLE_CYCLES
+        ref = reference_statistics(statistics(d_ref, first, plan["reference"], self.mesh))
+        check = compare(statistics(d_chk, first, plan["reference"], self.mesh), ref)
+        d_short = [runs.read_csv(s["csv"]) for s in shorts]
+        reference = dict(method="arkode-erk", rtol=rtol, cpu_per_s=s_ref["cpuPerSimulatedSecond"], statistics=ref,
+                         check=dict(method="fixed-verlet", step=h_check, cpu_per_s=s_chk["cpuPerSimulatedSecond"],
+                                    errors=check, consistent=as_accurate_as_physics(check)),
+                         short=dict(rtol=short_rtol[0], check_rtol=short_rtol[1],
+                                    change=short_errors(d_short[1], d_short[0], t0)))
+        return reference, d_short[0]
+
+    def run_scene(self, rpm):
+        plan = self.plan(rpm)
+        sd = self.runs_dir / f"{rpm:g}rpm"
+        sd.mkdir(parents=True, exist_ok=True)
+        total = (plan["run_in"] + SETTLE_CYCLES + plan["reference"] + 0.5) * plan["cycle"]
+        plan["inputs"] = tables.write_inputs_csv(sd / "inputs.csv", rpm, total, dt=1e-5)
+        self.log(f"\n## scene {rpm:g} rpm: run-in {plan['run_in']} cycles, then every run {SETTLE_CYCLES} cycle "
+                 f"settling + {plan['cycles']} measured cycles ({plan['rigid']} for rigid contacts; reference "
+                 f"{plan['reference']})")
+        state, t0, cpu_tr = self.transient(sd, rpm, plan)
+        reference, short_ref = self.references(sd, rpm, plan, state, t0)
+        self.log(reference_line(reference))
+        scene = dict(rpm=rpm, plan={k: v for k, v in plan.items() if k != "inputs"}, t0=t0, transientCpu=cpu_tr,
+                     reference=reference, points=[])
+        jobs = [(m, v) for m in METHODS for v in (m["quick"] if self.quick else m["full"])]
         with cf.ThreadPoolExecutor(max_workers=self.args.jobs) as ex:
-            futs = [ex.submit(self.point, sd, m, v, rpm, inputs, t_run, settle, state, dref, t0, repeats)
+            futs = [ex.submit(self.point, sd, m, v, rpm, plan, state, reference["statistics"], short_ref, t0)
                     for m, v in jobs]
             for f in futs:
                 p = f.result()
@@ -363,14 +403,26 @@ class Study:
         return scene
 
 
+def reference_line(reference):
+    F = reference["statistics"]["tensioner.F.mean"]
+    chk = reference["check"]
+    worst = max(chk["errors"].items(), key=lambda kv: abs(kv[1]["z"]) if math.isfinite(kv[1]["z"]) else 0.0)
+    return (f"reference arkode-erk rtol {reference['rtol']:g} ({reference['cpu_per_s']:.0f} CPU s/s): tensioner force "
+            f"mean {F['mean']:.2f} +- {F['ci95']:.2f} N over {F['cycles']} cycles (cycle scatter {F['sd']:.2f} N); "
+            f"check fixed-verlet {chk['step'] * 1e6:g} us: {'consistent' if chk['consistent'] else 'NOT consistent'} "
+            f"(largest |z| {abs(worst[1]['z']):.2f} at {worst[0]}); short horizon change "
+            f"{reference['short']['change']['short_F_rms_pct']:.2g} %")
+
+
 def point_line(p):
     head = f"  {p['label']:<34} {setting_label(p, p['value']):<16}"
     if p["kind"] != "ok":
         return head + f" FAILED ({p['kind']}) at t = {p.get('failureTime') or 0:.6f} s: {p['failure']}"
     e = p["errors"]
-    return (head + f" {p['cpu_per_s']:9.2f} CPU s/s  F rms {e['F_rms_pct']:6.2f} %  F max {e['F_max_N']:7.2f} N  "
-            f"level {e['F_level_pct']:5.2f} %  "
-            f"orders {e['orders_maxabs_dB']:5.2f} dB  mesh {e['mesh_dB']:+6.2f} dB  2 ms: F {e['short_F_rms_pct']:.3g} %")
+    F, pp, o2 = e["tensioner.F.mean"], e["tensioner.F.peakToPeak"], e["tensioner.F.order2"]
+    return (head + f" {p['cpu_per_s']:9.2f} CPU s/s  F mean {F['error']:+6.2f} % (z {F['z']:+5.2f})  F p2p "
+            f"{pp['error']:+6.2f} % (z {pp['z']:+5.2f})  order 2 {o2['error']:+5.2f} dB (z {o2['z']:+5.2f})  "
+            f"{'consistent' if p['consistent'] else 'NOT consistent'}  2 ms: F {e['short_F_rms_pct']:.3g} %")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -396,7 +448,7 @@ def stability(study):
     methods = [METHODS[0], next(m for m in METHODS if m["id"] == "ts")] if quick else METHODS
     inputs = {}
     for rpm in sorted(set(speeds + [3000])):
-        inputs[rpm] = tables.write_inputs_csv(sd / f"inputs_{rpm}.csv", rpm, t_run + 0.01, dt=OUTPUT_STEP)
+        inputs[rpm] = tables.write_inputs_csv(sd / f"inputs_{rpm}.csv", rpm, t_run + 0.01, dt=1e-5)
     drives = {}
     for f in factors:
         drives[("joint", f)] = scaled_drive(sd / f"drive_joint_{f:g}.json", joint=f)
@@ -488,348 +540,9 @@ def realtime(study):
 
 
 # ---------------------------------------------------------------------------------------------
-# charts and report
+# the command
 
-def chart_scene(path, scene, mesh):
-    plt = plots.plt
-    fig, axes = plt.subplots(3, 3, figsize=(16, 13))
-    fig.suptitle(f"Work-precision, default drive at {scene['rpm']:g} rpm with the torque tables "
-                 f"(measured {scene['measured'] * 1e3:.0f} ms from t = {(scene['t0'] + scene['settle']) * 1e3:.0f} ms; "
-                 f"reference arkode-erk rtol {scene['reference']['rtol']:g})", fontsize=11)
-    chg = scene["reference"]["change"]
-    for ax, (key, label) in zip(axes.flat, MEASURES):
-        ymax = 0.0
-        ymin = math.inf
-        xs_fail = []
-        for m in METHODS:
-            pts = [p for p in scene["points"] if p["method"] == m["id"]]
-            ok = [p for p in pts if p["kind"] == "ok"]
-            if ok:
-                x = [p["cpu_per_s"] for p in ok]
-                y = [max(measure_value(p["errors"], key), 1e-16) for p in ok]
-                ax.plot(x, y, marker=MARKERS[m["id"]], color=COLORS[m["id"]], lw=1, ms=5, label=m["label"])
-                ymax, ymin = max(ymax, max(y)), min(ymin, min(y))
-            for p in pts:
-                if p["kind"] != "ok":
-                    xs_fail.append((p["cpu_per_s"], m["id"], p["kind"]))
-        c = max(measure_value(chg, key), 1e-16)
-        ymin = min(ymin, c)
-        ymax = max(ymax, c)
-        ax.axhline(c, ls="--", color="0.4", lw=1)
-        ax.text(0.01, c, " reference change", transform=ax.get_yaxis_transform(), fontsize=7, va="bottom",
-                color="0.3")
-        if key in ("F_rms_pct", "short_F_rms_pct", "F_level_pct"):
-            ax.axhline(THRESHOLD_RMS, ls=":", color="r", lw=1)
-            ax.text(0.99, THRESHOLD_RMS, "1 % ", transform=ax.get_yaxis_transform(), fontsize=7, ha="right",
-                    va="bottom", color="r")
-            ymin, ymax = min(ymin, THRESHOLD_RMS), max(ymax, THRESHOLD_RMS)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        top = ymax * 6.0 if ymax > 0 else 1.0
-        for x, mid, kind in xs_fail:
-            ax.plot([x], [top], marker="x", color=COLORS[mid], ms=8, mew=2, clip_on=False)
-            ax.annotate(KIND_CODES.get(kind, kind), (x, top), fontsize=6, xytext=(3, 3), textcoords="offset points",
-                        color=COLORS[mid])
-        if math.isfinite(ymin) and ymin > 0:
-            ax.set_ylim(ymin / 3.0, top * 3.0)
-        ax.set_title(label, fontsize=9)
-        ax.set_xlabel("CPU s per simulated s", fontsize=8)
-        ax.grid(True, which="both", alpha=0.25)
-        ax.tick_params(labelsize=7)
-    handles, labels = axes.flat[0].get_legend_handles_labels()
-    fail_handle = plots.plt.Line2D([], [], marker="x", ls="", color="k", mew=2, label="failure (x at its cost; code)")
-    fig.legend(handles + [fail_handle], labels + [fail_handle.get_label()], loc="lower center", ncol=5, fontsize=8)
-    fig.tight_layout(rect=(0, 0.05, 1, 0.96))
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-
-
-def chart_stability(path, stab, axis):
-    plt = plots.plt
-    rs = [r for r in stab["runs"] if r["axis"] == axis]
-    if not rs:
-        return False
-    methods = [m for m in METHODS if any(r["method"] == m["id"] for r in rs)]
-    if axis in ("step [us]", "rtol"):
-        methods = [m for m in methods if (m["option"] == "step") == (axis == "step [us]")]
-    xs = sorted({r["x"] for r in rs if any(r["method"] == m["id"] for m in methods)})
-    if not methods or not xs:
-        return False
-    fig, ax = plt.subplots(figsize=(1.3 * len(xs) + 3.5, 0.55 * len(methods) + 1.4))
-    for i, m in enumerate(methods):
-        for j, x in enumerate(xs):
-            r = next((r for r in rs if r["method"] == m["id"] and r["x"] == x), None)
-            if r is None:
-                continue
-            if r["kind"] == "ok":
-                color, text = "#9be39b", f"{r['cpu_per_s']:.3g}"
-            elif r["kind"] == "timeout":
-                color, text = "#f2d16b", "TIME"
-            else:
-                color = "#f08080"
-                text = f"{KIND_CODES.get(r['kind'], r['kind'])} {1e3 * (r['failureTime'] or 0):.2g}ms"
-            ax.add_patch(plt.Rectangle((j, i), 1, 1, color=color, ec="white"))
-            ax.text(j + 0.5, i + 0.5, text, ha="center", va="center", fontsize=7)
-    ax.set_xlim(0, len(xs))
-    ax.set_ylim(0, len(methods))
-    ax.invert_yaxis()
-    ax.set_xticks([j + 0.5 for j in range(len(xs))])
-    ax.set_xticklabels([f"{x * 1e6:g}" if axis == "step [us]" else f"{x:g}" for x in xs], fontsize=8)
-    ax.set_yticks([i + 0.5 for i in range(len(methods))])
-    ax.set_yticklabels([m["label"] for m in methods], fontsize=8)
-    ax.set_xlabel(axis, fontsize=9)
-    ax.set_title(f"stability over {axis.split(' [')[0]}: green = ok (CPU s per simulated s), red = failure "
-                 f"detected (code, time), yellow = over the time budget", fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    return True
-
-
-def first_reaching(points, key, threshold):
-    ok = sorted([p for p in points if p["kind"] == "ok"], key=lambda p: p["cpu_per_s"])
-    for p in ok:
-        if measure_value(p["errors"], key) <= threshold:
-            return p
-    return None
-
-
-def verdicts(scene):
-    pts = scene["points"]
-    ok = [p for p in pts if p["kind"] == "ok"]
-    chg = scene["reference"]["change"]
-    lines = []
-    floor_cycle = chg["F_rms_pct"]
-    lines.append(f"- Over the whole cycle the reference itself changes by {floor_cycle:.3g} % RMS in tensioner force "
-                 f"when its tolerance is tightened tenfold (over 2 ms: {chg['short_F_rms_pct']:.2g} %): "
-                 + ("pointwise errors over the cycle measure the chaotic sensitivity of the link dynamics, not the "
-                    "method; judge methods by the 2 ms horizon and by the order amplitudes."
-                    if floor_cycle > THRESHOLD_RMS else "the reference is converged over the cycle."))
-    p = first_reaching(pts, "short_F_rms_pct", THRESHOLD_RMS)
-    if p:
-        lines.append(f"- Trajectory fidelity (tensioner force within 1 % RMS over 2 ms): cheapest is "
-                     f"{p['label']} at {setting_label(p, p['value'])}, {p['cpu_per_s']:.3g} CPU s per simulated s.")
-    else:
-        lines.append("- Trajectory fidelity (tensioner force within 1 % RMS over 2 ms): no method of the sweep "
-                     "reaches it.")
-    tol_level = max(THRESHOLD_RMS, 2.0 * chg["F_level_pct"])
-    p = first_reaching(pts, "F_level_pct", tol_level)
-    if p:
-        lines.append(f"- Levels (RMS of the tensioner force over the cycle within {tol_level:.2g} % of the reference, "
-                     f"i.e. max(1 %, twice the reference's own change)): cheapest is {p['label']} at "
-                     f"{setting_label(p, p['value'])}, {p['cpu_per_s']:.3g} CPU s per simulated s.")
-    tol_orders = max(1.0, 2.0 * chg["orders_maxabs_dB"])
-    p = first_reaching(pts, "orders_maxabs_dB", tol_orders)
-    if p:
-        lines.append(f"- Engine-order spectra (orders 2, 4, 6, 8 of the tensioner force within {tol_orders:.2g} dB "
-                     f"of the reference, i.e. max(1 dB, twice the reference's own change)): cheapest is {p['label']} "
-                     f"at {setting_label(p, p['value'])}, {p['cpu_per_s']:.3g} CPU s per simulated s.")
-    rigid = [p for p in pts if p["method"] in ("ts", "ts-ideal", "ed", "ed-ideal")]
-    rigid_ok = [p for p in rigid if p["kind"] == "ok"]
-    rigid_fail = sorted({p["kind"] for p in rigid if p["kind"] != "ok"})
-    compliant_ok = [p for p in ok if p["method"] not in ("ts", "ts-ideal", "ed", "ed-ideal")]
-    if rigid_ok:
-        best = min(rigid_ok, key=lambda p: p["errors"]["orders_maxabs_dB"])
-        cheapest = min(rigid_ok, key=lambda p: p["cpu_per_s"])
-        ratio = (f", {cheapest['cpu_per_s'] / min(p['cpu_per_s'] for p in compliant_ok):.0f} times the cost of the "
-                 f"cheapest compliant run" if compliant_ok else "")
-        ts = sorted([p for p in rigid_ok if p["method"] == "ts"], key=lambda p: -p["value"])
-        why = (f"; the 2 ms error of time stepping hardly falls with the step: {ts[0]['errors']['short_F_rms_pct']:.3g} % "
-               f"at {setting_label(ts[0], ts[0]['value'])}, {ts[-1]['errors']['short_F_rms_pct']:.3g} % at "
-               f"{setting_label(ts[-1], ts[-1]['value'])}" if len(ts) > 1 else "")
-        lines.append(f"- Rigid contacts (a different contact model: their difference from the compliant reference "
-                     f"is mostly model difference, not integration error{why}): the cheapest run is {cheapest['label']} at "
-                     f"{setting_label(cheapest, cheapest['value'])}, {cheapest['cpu_per_s']:.3g} CPU s per simulated s"
-                     f"{ratio}; closest in the order amplitudes is {best['label']} at "
-                     f"{setting_label(best, best['value'])} ({best['cpu_per_s']:.3g} CPU s/s, orders 2-8 within "
-                     f"{best['errors']['orders_maxabs_dB']:.2g} dB, RMS level within "
-                     f"{best['errors']['F_level_pct']:.2g} %)."
-                     + (f" Failures: {', '.join(rigid_fail)}." if rigid_fail else ""))
-    elif rigid:
-        lines.append(f"- Rigid contacts: every rigid-contact run failed ({', '.join(rigid_fail)}).")
-    return lines
-
-
-def write_report(study, scenes, stab, rt, started, wall):
-    out = study.out
-    L = []
-    L.append("# Speed against accuracy: work-precision and stability of every method")
-    L.append("")
-    command = getattr(study, "command", None) or f"python -m harness.study{' --quick' if study.quick else ''}"
-    L.append(f"Generated by `{command}` on {started:%Y-%m-%d %H:%M} in {wall / 60:.1f} min wall time "
-             f"(runs in parallel: {study.args.jobs}).")
-    L.append(f"Machine: {runs.machine()}.")
-    L.append("")
-    if "--resume" in command.split():
-        L.append("Resumed: the scenes whose `scene_<rpm>rpm.json` existed were taken from an earlier run of the "
-                 "study in the same directory (the log says which); the wall time is that of the resumed run.")
-        L.append("")
-    if study.quick:
-        L.append("**Quick variant**: 3000 rpm, 5 ms transient, 5 ms measured window (not an engine cycle), "
-                 "reference rtol 1e-8; a smoke test of the study, not its result.")
-        L.append("")
-    L.append("Method and measures: see the docstring of `harness/study.py`. Every run starts from the same state "
-             "after the start transient; CPU time is the median of up to "
-             f"{study.args.repeats} runs (runs above {study.args.repeat_below:g} s CPU are not repeated); "
-             "repeated runs are bit-identical unless marked.")
-    L.append("")
-    for sc in scenes:
-        ref = sc["reference"]
-        chg = ref["change"]
-        L.append(f"## {sc['rpm']:g} rpm")
-        L.append("")
-        L.append(f"Transient {sc['transient'] * 1e3:.0f} ms to t0 = {sc['t0'] * 1e3:.1f} ms; every run then settles "
-                 f"{sc['settle'] * 1e3:.0f} ms and is measured over {sc['measured'] * 1e3:.1f} ms (short horizon: "
-                 f"the first 2 ms after t0). Reference: arkode-erk at rtol {ref['rtol']:g} "
-                 f"({ref['cpu_per_s']:.0f} CPU s/s): tensioner force mean {ref['F_mean']:.1f} N, RMS "
-                 f"{ref['F_rms']:.1f} N, peak-to-peak {ref['F_p2p']:.0f} N; order amplitudes "
-                 + ", ".join(f"{k}: {v:.2f} N" for k, v in ref["amplitudes"].items()) + ".")
-        L.append("")
-        L.append(f"Reference check (rtol {ref['check_rtol']:g}, {ref['check_cpu_per_s']:.0f} CPU s/s), change: "
-                 f"tensioner force {chg['F_rms_pct']:.3g} % RMS / {chg['F_max_N']:.3g} N max over the window, "
-                 f"{chg['short_F_rms_pct']:.2g} % RMS over the first 2 ms; tension-guide angle "
-                 f"{chg['phi_rms_rad']:.2g} rad RMS over the window, {chg['short_phi_rms_rad']:.2g} rad over 2 ms; "
-                 f"orders 2-8 {chg['orders_maxabs_dB']:.2g} dB, meshing order {chg['mesh_dB']:+.2g} dB.")
-        L.append("")
-        L.append("Is the reference converged? Reference change against the smallest error plotted, per measure "
-                 "(the bar: at least ten times smaller):")
-        L.append("")
-        L.append("| measure | reference change | smallest error plotted | ratio | bar |")
-        L.append("|---|---|---|---|---|")
-        for key, label in MEASURES:
-            ok_pts = [p for p in sc["points"] if p["kind"] == "ok"]
-            if not ok_pts:
-                continue
-            smallest = min(measure_value(p["errors"], key) for p in ok_pts)
-            c = measure_value(chg, key)
-            ratio = smallest / c if c > 0 else math.inf
-            L.append(f"| {label} | {c:.3g} | {smallest:.3g} | {ratio:.3g} | {'met' if ratio >= 10 else 'NOT met'} |")
-        L.append("")
-        L.append(f"![work-precision {sc['rpm']:g} rpm](wp_{sc['rpm']:g}rpm.png)")
-        L.append("")
-        L.append("| method | setting | CPU s/s | F RMS % | F max N | F level % | phi RMS rad | phi max rad | "
-                 "orders 2,4,6,8 dB | mesh dB | 2 ms: F RMS % | 2 ms: phi RMS rad | counters |")
-        L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-        for p in sc["points"]:
-            if p["kind"] != "ok":
-                L.append(f"| {p['label']} | {setting_label(p, p['value'])} | fails | {KIND_CODES.get(p['kind'], '')} "
-                         f"{p['kind']} at t = {(p['failureTime'] or 0) * 1e3:.3f} ms: {p['failure']} ||||||||||")
-                continue
-            e = p["errors"]
-            cnt = f"{p.get('steps', 0)} steps"
-            if "lcpSolves" in p:
-                cnt += (f", {p['lcpSolves']} LCPs (mean size {p['lcpSizeMean']:.0f}, max {p['lcpSizeMax']}), "
-                        f"{p.get('events', 0)} events, {p.get('regularizedLcps', 0)} regularized")
-            if not p["repeatsIdentical"]:
-                cnt += ", REPEATS DIFFER"
-            L.append(f"| {p['label']} | {setting_label(p, p['value'])} | {p['cpu_per_s']:.3g} | {e['F_rms_pct']:.3g} | "
-                     f"{e['F_max_N']:.3g} | {e['F_level_pct']:.2g} | {e['phi_rms_rad']:.2g} | {e['phi_max_rad']:.2g} | "
-                     + " ".join(f"{v:+.2f}" for v in e["orders_dB"].values())
-                     + f" | {e['mesh_dB']:+.2f} | {e['short_F_rms_pct']:.3g} | {e['short_phi_rms_rad']:.2g} | {cnt} |")
-        L.append("")
-        L.append("Verdict:")
-        L.append("")
-        L.extend(verdicts(sc))
-        L.append("")
-    # 1 % statement at 3000 rpm
-    sc3 = next((s for s in scenes if s["rpm"] == 3000), None)
-    if sc3:
-        L.append("## 3000 rpm: CPU time at which each method first reaches 1 % RMS error in tensioner force")
-        L.append("")
-        L.append("| method | over the measured cycle | over the first 2 ms |")
-        L.append("|---|---|---|")
-        for m in METHODS:
-            pts = [p for p in sc3["points"] if p["method"] == m["id"]]
-            cells = []
-            for key in ("F_rms_pct", "short_F_rms_pct"):
-                p = first_reaching(pts, key, THRESHOLD_RMS)
-                if p:
-                    cells.append(f"{p['cpu_per_s']:.3g} CPU s/s ({setting_label(p, p['value'])})")
-                elif pts and all(p["kind"] != "ok" for p in pts):
-                    cells.append("never (every run fails)")
-                else:
-                    cells.append("never within the sweep")
-            L.append(f"| {m['label']} | {cells[0]} | {cells[1]} |")
-        L.append("")
-        chg = sc3["reference"]["change"]
-        L.append(f"Over the cycle, the reference's own change ({chg['F_rms_pct']:.3g} %) is the floor below which no "
-                 "error can be resolved.")
-        L.append("")
-    # stability
-    L.append("## Stability map")
-    L.append("")
-    L.append(f"Each run: {stab['duration'] * 1e3:g} ms from the pre-loaded state with the torque tables; the failure "
-             "kind is what the solver detected and reported (codes: "
-             + ", ".join(f"{v} {k}" for k, v in KIND_CODES.items()) + ").")
-    L.append("")
-    for axis in ("speed [rpm]", "step [us]", "rtol", "joint stiffness factor", "contact stiffness factor"):
-        name = "stability_" + axis.split(" [")[0].replace(" ", "_") + ".png"
-        if chart_stability(out / name, stab, axis):
-            L.append(f"![stability over {axis}]({name})")
-            L.append("")
-    L.append("| method | axis | value | setting | outcome |")
-    L.append("|---|---|---|---|---|")
-    for r in stab["runs"]:
-        oc = (f"ok, {r['cpu_per_s']:.3g} CPU s/s" if r["kind"] == "ok" else
-              f"**{r['kind']}** at t = {(r['failureTime'] or 0) * 1e3:.3f} ms: {r['failure']}")
-        x = r["x"] * 1e6 if r["axis"] == "step [us]" else r["x"]
-        L.append(f"| {r['label']} | {r['axis']} | {x:g} | {r['setting']} | {oc} |")
-    L.append("")
-    # real time
-    L.append("## Real time: CPU time per fmi2DoStep (ChainDrive.fmu through fmpy FMU2Slave, 3000 rpm)")
-    L.append("")
-    L.append("| method | communication step | steps | median ms | p99 ms | max ms | median / step | wall max ms | "
-             "deadline misses |")
-    L.append("|---|---|---|---|---|---|---|---|---|")
-    for r in rt:
-        if "median" in r:
-            L.append(f"| {r['label']} | {r['step'] * 1e3:g} ms | {r['steps']} | {r['median'] * 1e3:.3f} | "
-                     f"{r['p99'] * 1e3:.3f} | {r['max'] * 1e3:.3f} | {r['ratio']:.2f} | {r['wall_max'] * 1e3:.3f} | "
-                     f"{r['misses']} |" + (f" failed after: {r['failure']}" if r["failure"] else ""))
-        else:
-            L.append(f"| {r['label']} | {r['step'] * 1e3:g} ms | 0 | fails: {r['failure']} ||||||")
-    L.append("")
-    fastest = [r for r in rt if "median" in r]
-    if fastest:
-        f = min(fastest, key=lambda r: r["ratio"])
-        L.append(f"Verdict: the cheapest fixed-step method is {f['label']} ({f['median'] * 1e3:.3g} ms CPU per "
-                 f"{f['step'] * 1e3:g} ms step, {f['ratio']:.2f} times the step): "
-                 + ("real time on this machine." if f["ratio"] < 1.0 else
-                    "not real time on this machine; hardware-in-the-loop use needs a faster machine or a cheaper "
-                    "model."))
-        L.append("")
-    L.append("## Log")
-    L.append("")
-    L.append("```")
-    L.extend(study.log_lines)
-    L.append("```")
-    (out / "report.md").write_text("\n".join(L) + "\n")
-
-
-def rewrite_report(args):
-    r = json.loads(pathlib.Path(args.report_only).read_text())
-    args.quick = r.get("quick", False)
-    st = r.get("settings", {})
-    args.repeats = st.get("repeats", args.repeats)
-    args.repeat_below = st.get("repeat_below", args.repeat_below)
-    if args.out is None:
-        args.out = str(pathlib.Path(args.report_only).parent)
-    study = Study(args)
-    study.out.mkdir(parents=True, exist_ok=True)
-    study.log_lines = r.get("log", [])
-    study.command = r.get("command")
-    args.jobs = st.get("jobs", args.jobs)
-    if pathlib.Path(args.report_only).resolve() != (study.out / "results.json").resolve():
-        (study.out / "results.json").write_text(json.dumps(r, indent=1))
-    for sc in r["scenes"]:
-        chart_scene(study.out / f"wp_{sc['rpm']:g}rpm.png", sc, study.mesh)
-    write_report(study, r["scenes"], r["stability"], r["realtime"],
-                 datetime.datetime.fromisoformat(r["started"]), r["wall_seconds"])
-    print(f"written: {study.out / 'report.md'}")
-    return 0
-
-
-def main(argv=None):
+def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="the reduced variant (CI)")
     ap.add_argument("--out", default=None, help="output directory (default results/study or results/study-quick)")
@@ -838,7 +551,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3, help="runs per point for the median CPU time")
     ap.add_argument("--repeat-below", type=float, default=20.0,
                     help="repeat a point only if one run takes less than this many CPU seconds")
-    ap.add_argument("--timeout", type=float, default=1800.0, help="wall-time budget of one run [s]")
+    ap.add_argument("--timeout", type=float, default=3600.0, help="wall-time budget of one measured run [s]")
     ap.add_argument("--keep-csv", action="store_true", help="keep the output CSV of every point")
     ap.add_argument("--skip", default="", help="parts to skip: comma separated of wp, stability, realtime")
     ap.add_argument("--resume", action="store_true",
@@ -846,43 +559,54 @@ def main(argv=None):
     ap.add_argument("--report-only", metavar="RESULTS_JSON",
                     help="only rewrite the report and charts into --out from the results of an earlier run")
     args = ap.parse_args(argv)
+    if args.out is None:
+        args.out = (str(pathlib.Path(args.report_only).parent) if args.report_only else
+                    str(paths.RESULTS / ("study-quick" if args.quick else "study")))
+    return args
+
+
+def rewrite_report(args):
+    from . import study_report
+    r = json.loads(pathlib.Path(args.report_only).read_text())
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if pathlib.Path(args.report_only).resolve() != (out / "results.json").resolve():
+        (out / "results.json").write_text(json.dumps(r, indent=1))
+    study_report.write(out, r)
+    print(f"written: {out / 'report.md'}")
+    return 0
+
+
+def main(argv=None):
+    from . import study_report
+    args = parse_args(argv)
     if args.report_only:
         return rewrite_report(args)
-    if args.out is None:
-        args.out = str(paths.RESULTS / ("study-quick" if args.quick else "study"))
-    scenes_rpm = [3000.0] if args.quick else [1000.0, 3000.0, 6000.0]
+    scenes_rpm = [6000.0] if args.quick else [1000.0, 3000.0, 6000.0]
     if args.scenes:
         scenes_rpm = [float(x) for x in args.scenes.split(",")]
     skip = set(filter(None, args.skip.split(",")))
     study = Study(args)
     out = pathlib.Path(args.out)
-    if (out / "runs").exists() and not args.resume:
-        shutil.rmtree(out / "runs")
     if not args.resume:
+        shutil.rmtree(out / "runs", ignore_errors=True)
         for f in out.glob("scene_*rpm.json"):
             f.unlink()
     out.mkdir(parents=True, exist_ok=True)
     started = datetime.datetime.now()
     w0 = time.monotonic()
     study.log(f"study{' (quick)' if args.quick else ''}: {runs.machine()}")
-    scenes = []
-    if "wp" not in skip:
-        for rpm in scenes_rpm:
-            sc = study.scene(rpm)
-            scenes.append(sc)
-            chart_scene(out / f"wp_{rpm:g}rpm.png", sc, study.mesh)
+    scenes = [study.scene(rpm) for rpm in scenes_rpm] if "wp" not in skip else []
     stab = stability(study) if "stability" not in skip else dict(duration=0.0, runs=[])
     rt = realtime(study) if "realtime" not in skip else []
     wall = time.monotonic() - w0
+    command = " ".join(["python -m harness.study"] + (argv if argv is not None else sys.argv[1:]))
     results = dict(machine=runs.machine(), started=started.isoformat(timespec="seconds"), wall_seconds=wall,
-                   quick=args.quick, command=" ".join(["python -m harness.study"] + (argv if argv is not None
-                                                                                     else sys.argv[1:])),
-                   scenes=scenes, stability=stab, realtime=rt, log=study.log_lines,
+                   quick=args.quick, command=command, scenes=scenes, stability=stab, realtime=rt, log=study.log_lines,
                    settings=dict(repeats=args.repeats, repeat_below=args.repeat_below, jobs=args.jobs,
                                  timeout=args.timeout))
     (out / "results.json").write_text(json.dumps(results, indent=1))
-    study.command = results["command"]
-    write_report(study, scenes, stab, rt, started, wall)
+    study_report.write(out, results)
     if not args.keep_csv and not args.quick:
         shutil.rmtree(out / "runs", ignore_errors=True)
     print(f"\nwritten: {out / 'report.md'} ({wall / 60:.1f} min)")

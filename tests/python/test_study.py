@@ -5,6 +5,7 @@ import math
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from harness import paths, study
@@ -31,12 +32,43 @@ def test_every_method_gives_a_point_or_a_reported_failure(quick):
             if p["kind"] == "ok":
                 e = p["errors"]
                 assert p["cpu_per_s"] > 0 and p["repeatsIdentical"]
-                for k in ("F_rms_pct", "F_max_N", "phi_rms_rad", "orders_maxabs_dB", "mesh_dB", "short_F_rms_pct"):
-                    assert math.isfinite(e[k]), (m["id"], k)
+                for k in study.VERDICT_KEYS:
+                    assert math.isfinite(e[k]["error"]) and math.isfinite(e[k]["z"]), (m["id"], k)
+                    assert e[k]["cycles"] == 2, (m["id"], k)
+                assert math.isfinite(e["short_F_rms_pct"]) and isinstance(p["consistent"], bool)
             else:
                 # a failure the solver detected and classified (not a crash, not a timeout)
                 assert p["kind"] in FAILURE_KINDS, (m["id"], p["kind"], p["failure"])
                 assert p["failure"] and p["failureTime"] is not None
+
+
+def test_reference_ensemble_has_intervals_and_is_checked(quick):
+    _, r = quick
+    (scene,) = r["scenes"]
+    ref = scene["reference"]
+    F = ref["statistics"]["tensioner.F.mean"]
+    assert F["cycles"] == 3 and F["ci95"] > 0 and F["sd"] > 0 and 20.0 < F["mean"] < 500.0
+    assert isinstance(ref["check"]["consistent"], bool)
+    assert set(ref["check"]["errors"]) == set(ref["statistics"])
+
+
+def test_errors_are_differences_of_cycle_statistics():
+    """The error measure on a constructed case: a method whose cycles equal the reference's shifted
+    by one reference scatter is off by that shift, in % and in units of the scatter."""
+    rng = np.random.default_rng(1)
+    ref_values = 100.0 + rng.normal(0.0, 4.0, 60)
+    ref = study.reference_statistics({"tensioner.F.mean": ("N", ref_values), "tensioner.F.order2": ("N", ref_values)})
+    sd = ref["tensioner.F.mean"]["sd"]
+    e = study.compare({"tensioner.F.mean": ("N", ref_values[:20] + sd), "tensioner.F.order2": ("N", ref_values[:20])},
+                      ref)
+    shift = e["tensioner.F.mean"]
+    mean20 = float(np.mean(ref_values[:20]))
+    assert shift["error"] == pytest.approx(100.0 * (mean20 + sd - ref["tensioner.F.mean"]["mean"])
+                                           / ref["tensioner.F.mean"]["mean"])
+    assert shift["scatter"] == pytest.approx((mean20 + sd - ref["tensioner.F.mean"]["mean"]) / sd)
+    assert shift["errorUnit"] == "%" and e["tensioner.F.order2"]["errorUnit"] == "dB"
+    assert abs(e["tensioner.F.order2"]["z"]) < 1.0  # a subset of the same cycles: consistent
+    assert abs(shift["z"]) > 1.0                    # shifted by a whole cycle scatter: not consistent
 
 
 def test_compliant_methods_converge_towards_the_reference(quick):
@@ -47,7 +79,7 @@ def test_compliant_methods_converge_towards_the_reference(quick):
     verlet = sorted([p for p in scene["points"] if p["method"] == "verlet"], key=lambda p: -p["value"])
     assert [p["kind"] for p in verlet] == ["ok", "ok"]
     assert verlet[1]["errors"]["short_F_rms_pct"] < verlet[0]["errors"]["short_F_rms_pct"]
-    change = scene["reference"]["change"]["short_F_rms_pct"]
+    change = scene["reference"]["short"]["change"]["short_F_rms_pct"]
     compliant = [p for p in scene["points"] if p["kind"] == "ok" and p["method"] in ("verlet", "erk", "bdf-klu")]
     assert compliant and all(change < p["errors"]["short_F_rms_pct"] for p in compliant)
 
@@ -69,5 +101,5 @@ def test_real_time_timings_and_report(quick):
     for x in r["realtime"]:
         assert x.get("median", 0) > 0 or x["failure"], x
     text = (out / "report.md").read_text()
-    assert "3000 rpm: CPU time at which each method first reaches 1 % RMS error" in text
-    assert (out / "wp_3000rpm.png").stat().st_size > 10000
+    assert "As accurate as the physics allows" in text and "Reference ensemble" in text
+    assert (out / "wp_6000rpm.png").stat().st_size > 10000
