@@ -114,14 +114,19 @@ def interval(values, confidence=0.95):
     return mean, t * float(np.std(x, ddof=1)) / math.sqrt(n_eff), n_eff
 
 
-def summary(d, run_in_cycles, meshing_order):
-    """{key: {mean, ci95, cycles, unit}} of every headline quantity (the content of
-    results/summary.json)."""
+def summarize(per_cycle_values):
+    """{key: {mean, ci95, cycles, unit}} of every headline quantity from its per-cycle values (the
+    content of results/summary.json)."""
     out = {}
-    for key, (unit, values) in per_cycle(d, run_in_cycles, meshing_order).items():
+    for key, (unit, values) in per_cycle_values.items():
         mean, half, _ = interval(values)
         out[key] = {"mean": mean, "ci95": half, "cycles": int(len(values)), "unit": unit}
     return out
+
+
+def summary(d, run_in_cycles, meshing_order):
+    """summarize() of the record d after run_in_cycles engine cycles."""
+    return summarize(per_cycle(d, run_in_cycles, meshing_order))
 
 
 def format_line(key, s):

@@ -151,14 +151,23 @@ def parse_args(argv):
     return args
 
 
-def write_plots(out, d, args, t0):
+SHOWN_CYCLES = 4  # counted cycles shown in the time histories after the run-in
+CYCLE_PLOT_KEYS = ("tensioner.F.mean", "tensioner.F.peakToPeak", "tensionGuide.phi.peakToPeak_deg",
+                   "tensioner.F.order2", "tensioner.F.order8")
+
+
+def write_plots(out, d, args, t0, per_cycle, summary):
     title = f"{args.rpm:g} rpm, {args.coupling} loop, {args.method}"
     plots.drive_picture(out / "drive.png", args.drive)
-    plots.time_histories(out / "time_histories.png", d, args.rpm, title)
+    plots.time_histories(out / "time_histories.png", d, args.rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)",
+                         t_end=t0 + SHOWN_CYCLES * 120.0 / args.rpm, t_counted=t0)
+    plots.cycle_statistics(out / "cycle_statistics.png", per_cycle, summary, title + ", per engine cycle",
+                           CYCLE_PLOT_KEYS)
     plots.spectra(out / "spectra.png", d, args.rpm, t0, title + " (counted cycles)")
     plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0,
                      drive=args.drive)
-    return [out / n for n in ("drive.png", "time_histories.png", "spectra.png", "link_cycle.png")]
+    return [out / n for n in ("drive.png", "time_histories.png", "cycle_statistics.png", "spectra.png",
+                              "link_cycle.png")]
 
 
 def run_in_cycles(rpm):
@@ -201,10 +210,11 @@ def main(argv=None):
     cpu = time.process_time() - cpu0
     csv = out / "outputs.csv"
     write_csv(csv, d)
-    summary = cycle_stats.summary(d, run_in, drive.meshing_order(drive.drive_json(args.drive)))
+    per_cycle = cycle_stats.per_cycle(d, run_in, drive.meshing_order(drive.drive_json(args.drive)))
+    summary = cycle_stats.summarize(per_cycle)
     (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
     t0 = d["time"][cycle_stats.cycle_spans(d["crankshaft.phi"], run_in)[0][0]]
-    pictures = write_plots(out, d, args, t0)
+    pictures = write_plots(out, d, args, t0, per_cycle, summary)
     report(summary, run_in, cpu, duration)
     print(f"  outputs: {csv}, {out / 'summary.json'}")
     print("  plots: " + ", ".join(str(p) for p in pictures))

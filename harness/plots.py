@@ -96,9 +96,17 @@ def order_spectrum(t, x, rpm):
     return f / (rpm / 60.0), np.abs(X)
 
 
-def time_histories(path, d, rpm, title):
+def time_histories(path, d, rpm, title, t_end=None, t_counted=None):
+    """The outputs over time, up to t_end (default: all); t_counted marks the end of the run-in."""
+    if t_end is not None:
+        d = {k: v[d["time"] <= t_end] for k, v in d.items()}
     t = d["time"] * 1e3
     fig, ax = plt.subplots(5, 1, figsize=(10, 11), sharex=True)
+    if t_counted is not None:
+        for a in ax:
+            a.axvline(t_counted * 1e3, color="0.3", ls="--", lw=0.8)
+        ax[0].annotate(" run-in | counted cycles", (t_counted * 1e3, 1.0), xycoords=("data", "axes fraction"),
+                       ha="center", va="bottom", fontsize=7)
     ax[0].plot(t, d["tensioner.F"], lw=0.7)
     ax[0].set_ylabel("tensioner force [N]")
     ax[1].plot(t, d["chain.Ftight"], lw=0.5, label="tight span")
@@ -221,3 +229,25 @@ def dominant_orders(t, x, rpm, count=3):
     keep = np.flatnonzero(peak & (o > 0.75) & (o <= 40))
     idx = keep[np.argsort(amp[keep])[::-1][:count]]
     return [(float(o[i]), float(amp[i])) for i in idx]
+
+
+def cycle_statistics(path, per_cycle, summary, title, keys):
+    """Per-cycle values of headline quantities over the counted cycles, with their mean and 95 %
+    confidence interval: a run is stationary when the values scatter about a level line."""
+    fig, ax = plt.subplots(len(keys), 1, figsize=(10, 2.0 * len(keys) + 1.0), sharex=True)
+    for a, key in zip(np.atleast_1d(ax), keys):
+        unit, v = per_cycle[key]
+        s = summary[key]
+        n = np.arange(1, len(v) + 1)
+        a.plot(n, v, ".", ms=3, color="tab:blue")
+        a.axhline(s["mean"], color="k", lw=0.8)
+        a.axhspan(s["mean"] - s["ci95"], s["mean"] + s["ci95"], color="tab:orange", alpha=0.35, lw=0,
+                  label="mean +- 95 % confidence half-width")
+        a.set_ylabel(f"{key}\n[{unit}]", fontsize=7)
+        a.grid(True, lw=0.3)
+    np.atleast_1d(ax)[0].legend(fontsize=7, loc="upper right")
+    np.atleast_1d(ax)[-1].set_xlabel("counted engine cycle")
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -63,7 +63,8 @@ def test_main_job_open_loop_quick(tmp_path):
                         "--out", str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
     assert p.returncode == 0, p.stderr + p.stdout
     assert "tensioner.F.mean" in p.stdout and "real-time factor" in p.stdout
-    for name in ("outputs.csv", "summary.json", "drive.png", "time_histories.png", "spectra.png", "link_cycle.png"):
+    for name in ("outputs.csv", "summary.json", "drive.png", "time_histories.png", "cycle_statistics.png", "spectra.png",
+                 "link_cycle.png"):
         assert (tmp_path / name).stat().st_size > 1000, name
     summary = json.loads((tmp_path / "summary.json").read_text())
     expected = {"tensioner.F.mean", "tensioner.F.peakToPeak", "chain.Ftight.mean", "chain.Fslack.mean",
