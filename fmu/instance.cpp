@@ -578,7 +578,7 @@ Snapshot Instance::snapshot() const {
   s.crankSpeed = inCrankSpeed_;
   s.tauIntake = inTauIntake_;
   s.tauExhaust = inTauExhaust_;
-  if (sim_) {
+  if (sim_ && prepared_) {  // (parameters changed after the preparation: it runs again)
     s.y = sim_->state();
     s.gridStart = sim_->grid().start;
     s.gridUnit = sim_->grid().unit;
@@ -602,6 +602,14 @@ fmi2Status Instance::restore(const Snapshot& s) {
       return fmi2Error;
     }
     sim_->restoreAt(s.gridIndex, s.y);
+  } else {
+    // A state taken before the model was prepared (instantiated, or initialization mode before
+    // any output was asked for) holds no solver state: the solver state reached since is
+    // dropped, and fmi2ExitInitializationMode prepares the start state again.
+    sim_.reset();
+    inputs_ = nullptr;
+    model_.reset();
+    prepared_ = false;
   }
   state_ = s.state == kStepFailed || s.state == kError ? kStepComplete : s.state;
   time_ = s.time;
@@ -639,6 +647,23 @@ std::vector<char> Instance::serialize(const Snapshot& s) {
   return out;
 }
 
+namespace {
+
+// The first header field of a deserialized state that no instance can have written (nullptr if
+// none): bytes changed in storage or transfer must not become an instance state.
+const char* invalidHeaderField(const Snapshot& s, std::uint64_t components) {
+  const unsigned states = kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
+  if (s.state == 0 || (s.state & (s.state - 1)) != 0 || (s.state & ~states) != 0) return "state";
+  if (!std::isfinite(s.time) || !std::isfinite(s.lastSuccessfulTime)) return "time";
+  if (!std::isfinite(s.stepHint) || s.stepHint < 0.0) return "stepHint";
+  if (s.steps < 0) return "steps";
+  if (components == 0) return nullptr;
+  if (!std::isfinite(s.gridStart) || !std::isfinite(s.gridUnit) || s.gridUnit <= 0.0) return "grid";
+  return s.gridIndex < 0 ? "gridIndex" : nullptr;
+}
+
+}  // namespace
+
 fmi2Status Instance::deserialize(const char* data, size_t size, Snapshot& s) {
   const std::size_t head = sizeof kMagic + sizeof(uint64_t) + sizeof(unsigned) + 8 * sizeof(double) + 2 * sizeof(long long);
   if (!data || size < head || std::memcmp(data, kMagic, sizeof kMagic) != 0) {
@@ -663,6 +688,10 @@ fmi2Status Instance::deserialize(const char* data, size_t size, Snapshot& s) {
     get(v, sizeof *v);
   get(&s.steps, sizeof s.steps);
   get(&s.gridIndex, sizeof s.gridIndex);
+  if (const char* bad = invalidHeaderField(s, n)) {
+    log(fmi2Error, "logStatusError", "fmi2DeSerializeFMUstate: the serialized state is corrupt (field %s)", bad);
+    return fmi2Error;
+  }
   s.y.resize(n);
   if (n) get(s.y.data(), n * sizeof(double));
   return fmi2OK;

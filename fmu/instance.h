@@ -115,7 +115,6 @@ class Instance {
   double time_ = 0.0, startTime_ = 0.0, stopTime_ = 0.0, lastSuccessfulTime_ = 0.0, stepHint_ = 0.0;
   bool stopTimeDefined_ = false;
   long long steps_ = 0;
-  long long stepsBase_ = 0;  // integrator step count at the last restart
 
   std::shared_ptr<const Model> model_;
   std::unique_ptr<Simulation> sim_;

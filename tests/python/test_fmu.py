@@ -147,6 +147,30 @@ def test_get_set_state_and_serialization_roll_back_exactly():
     s.close()
 
 
+def test_state_taken_before_the_start_state_restores_the_start():
+    # a state taken in initialization mode before any output was read holds no solver state;
+    # restoring it must start again from the start state, not step on from where the run got to
+    # (found by the FMI call fuzz of the sanitizer stage)
+    s = fmu.Slave("early-state")
+    s.slave.setupExperiment(startTime=0.0)
+    for k, v in INPUTS.items():
+        s.set(k, v)
+    s.slave.enterInitializationMode()
+    state = s.slave.getFMUState()
+    observe = ["tensioner.F", "crankshaft.phi", "solver.steps", "solver.time"]
+    runs = []
+    for restore in (False, True):
+        if restore:
+            s.slave.setFMUState(state)
+        s.slave.exitInitializationMode()
+        for k in range(3):
+            s.step(H, t=k * H)
+        runs.append(s.get(observe))
+    assert runs[1] == runs[0] and runs[0]["solver.steps"] == 3 * round(H / 2.5e-6)
+    s.slave.freeFMUState(state)
+    s.close()
+
+
 def test_reset_and_rerun_reproduces_exactly():
     s = fmu.Slave("reset")
     s.initialize(inputs=INPUTS)

@@ -1,0 +1,109 @@
+// fmi_call_fuzz: random FMI 2.0 call sequences against ChainDrive.fmu's C interface, for the
+// sanitizer build (./run.sh test runs it as the ctest FmiCallFuzz there). The FMU sources are
+// linked into this program and the fmi2* functions called directly, so that the sanitizers see
+// every allocation and report with full stacks, without preloading their runtimes into a host.
+//
+//   fmi_call_fuzz [--seed S] [--count N] [--batch B] [--timeout SECONDS] [--max-failures F]
+//                 [--in-process] [--trace] [--source-dir DIR]
+//
+// Sequence k runs with seed S + k; a failing sequence is printed with its seed and replays alone
+// with --seed <its seed> --count 1. Exit status 0 when every sequence passed.
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "fuzz_supervisor.h"
+#include "fuzz_values.h"
+
+namespace {
+
+using namespace chaindrive::fuzz;
+
+// Measured so that the sanitizer stage of ./run.sh test (build, ctest, this fuzz) stays within
+// about 12 minutes on 2 cores; see README.md, Tests.
+constexpr std::uint64_t kDefaultCount = 3000;
+
+void usage() {
+  std::fprintf(stderr,
+               "usage: fmi_call_fuzz [--seed S] [--count N] [--batch B] [--timeout SECONDS] [--max-failures F]\n"
+               "                     [--in-process] [--trace] [--source-dir DIR]\n"
+               "  --seed S          sequence k runs with seed S + k (default 1)\n"
+               "  --count N         number of sequences (default %" PRIu64 ")\n"
+               "  --batch B         sequences per child process (default 100)\n"
+               "  --timeout S       a sequence making no progress for S seconds is a hang (default 60)\n"
+               "  --max-failures F  stop after F failing sequences (default 10)\n"
+               "  --in-process      run in this process (for a debugger; a crash ends the run)\n"
+               "  --trace           print every FMI call with its status and the FMU's message\n"
+               "  --source-dir DIR  the source tree (drive files; default %s)\n",
+               kDefaultCount, CHAINDRIVE_SOURCE_DIR);
+}
+
+bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir) {
+  o.count = kDefaultCount;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--in-process") o.inProcess = true;
+    else if (arg == "--trace") o.trace = true;
+    else if (arg == "--seed" && hasValue) o.seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (arg == "--count" && hasValue) o.count = std::strtoull(argv[++i], nullptr, 10);
+    else if (arg == "--batch" && hasValue) o.batch = std::strtoull(argv[++i], nullptr, 10);
+    else if (arg == "--timeout" && hasValue) o.timeoutSeconds = std::strtod(argv[++i], nullptr);
+    else if (arg == "--max-failures" && hasValue) o.maxFailures = std::strtoull(argv[++i], nullptr, 10);
+    else if (arg == "--source-dir" && hasValue) sourceDir = argv[++i];
+    else return false;
+  }
+  return o.timeoutSeconds > 0.0;
+}
+
+FuzzPaths pathsIn(const std::string& sourceDir) {
+  FuzzPaths p;
+  p.resourceDir = sourceDir + "/src/drives";
+  p.driveFile = sourceDir + "/src/drives/default_drive.json";
+  p.notADriveFile = sourceDir + "/CMakeLists.txt";
+  return p;
+}
+
+void printSummary(const FuzzOptions& o, const FuzzTotals& t, double seconds, std::size_t failures) {
+  const FuzzTotals::Reach all = t.all();
+  std::printf("fmi_call_fuzz: %" PRIu64 " sequences, seeds %" PRIu64 "..%" PRIu64 " (--seed %" PRIu64 " --count %" PRIu64
+              "), %.1f s wall\n",
+              all.sequences, o.seed, o.seed + o.count - 1, o.seed, o.count, seconds);
+  for (std::uint32_t p = 0; p < kPlanCount; ++p)
+    std::printf("  plan %-12s %6" PRIu64 " sequences, %6" PRIu64 " initialized, %6" PRIu64 " completed a doStep\n",
+                planName(p), t.plans[p].sequences, t.plans[p].initialized, t.plans[p].stepped);
+  for (std::size_t c = 0; c < t.combinations.size(); ++c)
+    std::printf("    %-40s %4" PRIu64 " sequences, %4" PRIu64 " initialized, %4" PRIu64 " completed a doStep\n",
+                methodCombinationName(c).c_str(), t.combinations[c].sequences, t.combinations[c].initialized,
+                t.combinations[c].stepped);
+  std::printf("  reached initialization: %" PRIu64 " sequences (%" PRIu64 " initializations); completed a doStep: %" PRIu64
+              " sequences (%" PRIu64 " doSteps)\n",
+              all.initialized, t.initializations, all.stepped, t.completedSteps);
+  std::printf("  FMI calls: %" PRIu64 " (OK %" PRIu64 ", warning %" PRIu64 ", discard %" PRIu64 ", error %" PRIu64 ")\n",
+              t.calls, t.statusCounts[0], t.statusCounts[1], t.statusCounts[2], t.statusCounts[3]);
+  std::printf("  failing sequences: %zu\n", failures);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  FuzzOptions options;
+  std::string sourceDir = CHAINDRIVE_SOURCE_DIR;
+  if (!parseOptions(argc, argv, options, sourceDir)) {
+    usage();
+    return 2;
+  }
+  std::printf("fmi_call_fuzz: %" PRIu64 " sequences from seed %" PRIu64 "\n", options.count, options.seed);
+  std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
+  FuzzTotals totals;
+  const std::vector<FuzzFailure> failures = runSequences(options, pathsIn(sourceDir), totals);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printSummary(options, totals, seconds, failures.size());
+  for (const FuzzFailure& f : failures)
+    std::printf("  seed %" PRIu64 ": %s (replay: --seed %" PRIu64 " --count 1)\n", f.seed, f.reason.c_str(), f.seed);
+  return failures.empty() ? 0 : 1;
+}
