@@ -18,7 +18,7 @@ known only to within the scatter of the cycles (harness/cycle_stats.py).
    run below starts from it (chaindrive-run --initial-state). Every run then settles for one engine
    cycle (in which the rigid-contact models find their own equilibrium: with ideal joints the chain
    cannot stretch) and is measured over the next N whole engine cycles (N: about 0.8 s of engine
-   time, CYCLES_TIME; a quarter of that for the costly rigid-contact methods).
+   time, CYCLES_TIME, or --cycles-time; a quarter of that for the costly rigid-contact methods).
 2. Reference ensemble: arkode-erk at rtol 1e-8 over three times as many cycles; for each headline
    quantity the mean over its cycles with the 95 % confidence half-width, and the cycle-to-cycle
    standard deviation (the reference's own scatter). Its convergence is checked by a second, very
@@ -78,6 +78,7 @@ OUTPUT_STEP = 6e-5       # [s] output interval of every run: whole steps of ever
 THRESHOLD_RMS = 1.0      # [%] the "1 % RMS error" of the tensioner force over the short horizon
 CYCLES_TIME = 0.8        # [s] engine time measured per point (whole cycles, at least MIN_CYCLES)
 MIN_CYCLES = 6
+CHAOS_RESULTS = paths.ROOT / "docs" / "study" / "chaos" / "results.json"  # divergence rates, for the report
 REFERENCE_FACTOR = 3     # the reference ensemble: this many times the cycles of a point
 RIGID_SHARE = 0.25       # rigid-contact methods (100-3000 CPU s/s): this share of the cycles
 SETTLE_CYCLES = 1        # engine cycles of every run before its measured ones
@@ -280,7 +281,7 @@ class Study:
         cycle = 120.0 / rpm
         if self.quick:
             return dict(cycle=cycle, run_in=2, cycles=2, rigid=2, reference=3)
-        n = max(MIN_CYCLES, int(round(CYCLES_TIME / cycle)))
+        n = max(MIN_CYCLES, int(round(self.args.cycles_time / cycle)))
         return dict(cycle=cycle, run_in=run_in_cycles(rpm), cycles=n, rigid=max(2, int(round(RIGID_SHARE * n))),
                     reference=REFERENCE_FACTOR * n)
 
@@ -548,6 +549,9 @@ def parse_args(argv):
     ap.add_argument("--out", default=None, help="output directory (default results/study or results/study-quick)")
     ap.add_argument("--scenes", default=None, help="engine speeds [rpm], comma separated (default 1000,3000,6000)")
     ap.add_argument("--jobs", type=int, default=1, help="runs in parallel (timings are cleaner with 1)")
+    ap.add_argument("--cycles-time", type=float, default=CYCLES_TIME,
+                    help=f"engine time measured per point [s] (whole cycles, at least {MIN_CYCLES}; "
+                         f"default {CYCLES_TIME})")
     ap.add_argument("--repeats", type=int, default=3, help="runs per point for the median CPU time")
     ap.add_argument("--repeat-below", type=float, default=20.0,
                     help="repeat a point only if one run takes less than this many CPU seconds")
@@ -556,6 +560,8 @@ def parse_args(argv):
     ap.add_argument("--skip", default="", help="parts to skip: comma separated of wp, stability, realtime")
     ap.add_argument("--resume", action="store_true",
                     help="reuse the scenes already finished in --out (scene_<rpm>rpm.json)")
+    ap.add_argument("--chaos", default=str(CHAOS_RESULTS),
+                    help="results of python -m harness.chaos for the report's last section (default %(default)s)")
     ap.add_argument("--report-only", metavar="RESULTS_JSON",
                     help="only rewrite the report and charts into --out from the results of an earlier run")
     args = ap.parse_args(argv)
@@ -565,6 +571,12 @@ def parse_args(argv):
     return args
 
 
+def chaos_results(args):
+    """The divergence-rate study's results for the report (None if it has not been run)."""
+    path = pathlib.Path(args.chaos)
+    return json.loads(path.read_text()) if path.exists() else None
+
+
 def rewrite_report(args):
     from . import study_report
     r = json.loads(pathlib.Path(args.report_only).read_text())
@@ -572,7 +584,7 @@ def rewrite_report(args):
     out.mkdir(parents=True, exist_ok=True)
     if pathlib.Path(args.report_only).resolve() != (out / "results.json").resolve():
         (out / "results.json").write_text(json.dumps(r, indent=1))
-    study_report.write(out, r)
+    study_report.write(out, r, chaos_results(args))
     print(f"written: {out / 'report.md'}")
     return 0
 
@@ -606,7 +618,7 @@ def main(argv=None):
                    settings=dict(repeats=args.repeats, repeat_below=args.repeat_below, jobs=args.jobs,
                                  timeout=args.timeout))
     (out / "results.json").write_text(json.dumps(results, indent=1))
-    study_report.write(out, results)
+    study_report.write(out, results, chaos_results(args))
     if not args.keep_csv and not args.quick:
         shutil.rmtree(out / "runs", ignore_errors=True)
     print(f"\nwritten: {out / 'report.md'} ({wall / 60:.1f} min)")
