@@ -154,13 +154,41 @@ fmi2Status Instance::exitInitializationMode() {
   return fmi2OK;
 }
 
+// The model, the roles of its rotors and the start state, from the parameters: a table of
+// contents of the steps below. Any failure is logged and leaves the instance unprepared.
 fmi2Status Instance::prepare() {
-  prepared_ = false;
+  dropSimulation();
+  if (!parametersValid()) return fmi2Error;
+  try {
+    DriveDescription desc = driveDescription();
+    if (!applyTensionerOverrides(desc)) return fmi2Error;
+    model_ = std::make_shared<const Model>(assemble(desc));
+    if (!assignRoles(*model_)) {
+      dropSimulation();
+      return fmi2Error;
+    }
+    startSimulation();
+    prepared_ = true;
+    return fmi2OK;
+  } catch (const DescriptionError& e) {
+    for (const auto& p : e.problems()) log(fmi2Error, "logStatusError", "drive description: %s", p.c_str());
+  } catch (const std::exception& e) {
+    log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
+  }
+  dropSimulation();
+  return fmi2Error;
+}
+
+void Instance::dropSimulation() {
   sim_.reset();
   inputs_ = nullptr;
   model_.reset();
+  prepared_ = false;
   outputsValid_ = false;
-  // ---- parameters ----
+}
+
+// Every parameter problem is logged (all of them at once); false if there was one.
+bool Instance::parametersValid() {
   std::vector<std::string> problems;
   bool knownMethod = false;
   std::string methods;
@@ -189,95 +217,96 @@ fmi2Status Instance::prepare() {
   checkOverride(params_.tensionerStiffness, "tensioner.stiffness", 1e9);
   checkOverride(params_.tensionerDamping, "tensioner.damping", 1e7);
   checkOverride(params_.tensionerDampingExtension, "tensioner.dampingExtension", 1e7);
-  if (!problems.empty()) {
-    for (const auto& p : problems) log(fmi2Error, "logStatusError", "%s", p.c_str());
-    return fmi2Error;
+  for (const auto& p : problems) log(fmi2Error, "logStatusError", "%s", p.c_str());
+  return problems.empty();
+}
+
+// The drive file of the parameter driveFile; empty: the resources' default drive, or the one
+// built into the binary when the importer gave no resources folder.
+DriveDescription Instance::driveDescription() {
+  if (!params_.driveFile.empty()) {
+    DriveDescription desc = loadDriveDescription(params_.driveFile);
+    log(fmi2OK, "logEvents", "drive: %s", params_.driveFile.c_str());
+    return desc;
   }
-  try {
-    // ---- the drive ----
-    DriveDescription d;
-    if (params_.driveFile.empty()) {
-      const std::string res = resourceDir_.empty() ? "" : resourceDir_ + "/default_drive.json";
-      if (!res.empty() && fileExists(res)) {
-        d = loadDriveDescription(res);
-        log(fmi2OK, "logEvents", "drive: %s", res.c_str());
-      } else {
-        d = defaultDriveDescription();
-        log(fmi2Warning, "logStatusWarning",
-            "no resources folder with default_drive.json (fmuResourceLocation '%s'); using the default drive built "
-            "into the binary",
-            resourceDir_.c_str());
-      }
-    } else {
-      d = loadDriveDescription(params_.driveFile);
-      log(fmi2OK, "logEvents", "drive: %s", params_.driveFile.c_str());
-    }
-    const bool overrides = params_.tensionerPreload >= 0 || params_.tensionerStiffness >= 0 ||
-                           params_.tensionerDamping >= 0 || params_.tensionerDampingExtension >= 0;
-    if (overrides && !d.tensioner.present) {
-      log(fmi2Error, "logStatusError", "tensioner.*: the drive has no tensioner to apply the parameters to");
-      return fmi2Error;
-    }
-    if (params_.tensionerPreload >= 0) d.tensioner.preload = params_.tensionerPreload;
-    if (params_.tensionerStiffness >= 0) d.tensioner.stiffness = params_.tensionerStiffness;
-    if (params_.tensionerDamping >= 0) d.tensioner.damping = params_.tensionerDamping;
-    if (params_.tensionerDampingExtension >= 0) d.tensioner.dampingExtension = params_.tensionerDampingExtension;
-    model_ = std::make_shared<const Model>(assemble(d));
-    const Model& m = *model_;
-    if (params_.linkIndex < -1 || params_.linkIndex >= m.chain.links) {
-      log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (as in the drive) or 0..%d",
-          params_.linkIndex, m.chain.links - 1);
-      return fmi2Error;
-    }
-    roles_ = Roles{};
-    roles_.crank = m.drivenRotor;
-    if (roles_.crank < 0) {
-      log(fmi2Error, "logStatusError", "the drive has no sprocket with motion 'prescribed' to follow crankshaft.w");
-      return fmi2Error;
-    }
-    roles_.intake = m.rotorIndex("camshaftIntake");
-    roles_.exhaust = m.rotorIndex("camshaftExhaust");
-    roles_.tensionGuide = m.tensioner.present ? m.tensioner.rotor : -1;
-    if (roles_.intake < 0 || roles_.exhaust < 0)
-      log(fmi2Warning, "logStatusWarning",
-          "the drive has no sprocket named camshaftIntake and/or camshaftExhaust: their inputs have no effect and their "
-          "outputs are zero");
-    SimulationOptions opt;
-    opt.integrator.method = params_.method;
-    opt.integrator.rtol = params_.tolerance;
-    opt.integrator.fixedStep = params_.step;
-    opt.integrator.stopAtOutputs = true;
-    opt.contactMethod = params_.contactMethod;
-    opt.jointModel = params_.jointModel;
-    opt.preload.enabled = params_.preload;
-    opt.monitoredLink = params_.linkIndex;
-    auto held = std::make_unique<HeldInputs>(m);
-    inputs_ = held.get();
-    sim_ = std::make_unique<Simulation>(model_, opt, std::move(held));
-    applyInputs();
-    sim_->start(time_);
-    const PreloadReport& rep = sim_->preloadReport();
-    log(rep.converged ? fmi2OK : fmi2Warning, rep.converged ? "logEvents" : "logStatusWarning",
-        "start state: %s (%.3f s CPU)", rep.message.c_str(), rep.cpuSeconds);
-    const TimeGrid& grid = sim_->grid();
-    log(fmi2OK, "logEvents",
-        "time grid: t_k = %.17g s + k %.17g s; a communication point within %.3g s of a grid point is that point, "
-        "one farther off is integrated to the grid point before it (output solver.time)",
-        grid.start, grid.unit, kSnapFraction * grid.unit);
-    steps_ = 0;
-    stepHint_ = 0.0;
-    lastSuccessfulTime_ = time_;
-    prepared_ = true;
-    return fmi2OK;
-  } catch (const DescriptionError& e) {
-    for (const auto& p : e.problems()) log(fmi2Error, "logStatusError", "drive description: %s", p.c_str());
-  } catch (const std::exception& e) {
-    log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
+  const std::string res = resourceDir_.empty() ? "" : resourceDir_ + "/default_drive.json";
+  if (!res.empty() && fileExists(res)) {
+    DriveDescription desc = loadDriveDescription(res);
+    log(fmi2OK, "logEvents", "drive: %s", res.c_str());
+    return desc;
   }
-  sim_.reset();
-  inputs_ = nullptr;
-  model_.reset();
-  return fmi2Error;
+  log(fmi2Warning, "logStatusWarning",
+      "no resources folder with default_drive.json (fmuResourceLocation '%s'); using the default drive built "
+      "into the binary",
+      resourceDir_.c_str());
+  return defaultDriveDescription();
+}
+
+// The tensioner parameters (negative: as in the drive); false if the drive has no tensioner.
+bool Instance::applyTensionerOverrides(DriveDescription& desc) {
+  const bool overrides = params_.tensionerPreload >= 0 || params_.tensionerStiffness >= 0 ||
+                         params_.tensionerDamping >= 0 || params_.tensionerDampingExtension >= 0;
+  if (overrides && !desc.tensioner.present) {
+    log(fmi2Error, "logStatusError", "tensioner.*: the drive has no tensioner to apply the parameters to");
+    return false;
+  }
+  if (params_.tensionerPreload >= 0) desc.tensioner.preload = params_.tensionerPreload;
+  if (params_.tensionerStiffness >= 0) desc.tensioner.stiffness = params_.tensionerStiffness;
+  if (params_.tensionerDamping >= 0) desc.tensioner.damping = params_.tensionerDamping;
+  if (params_.tensionerDampingExtension >= 0) desc.tensioner.dampingExtension = params_.tensionerDampingExtension;
+  return true;
+}
+
+// The rotors the FMU's inputs and outputs refer to, and the monitored link's range.
+bool Instance::assignRoles(const Model& m) {
+  if (params_.linkIndex < -1 || params_.linkIndex >= m.chain.links) {
+    log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (as in the drive) or 0..%d",
+        params_.linkIndex, m.chain.links - 1);
+    return false;
+  }
+  roles_ = Roles{};
+  roles_.crank = m.drivenRotor;
+  if (roles_.crank < 0) {
+    log(fmi2Error, "logStatusError", "the drive has no sprocket with motion 'prescribed' to follow crankshaft.w");
+    return false;
+  }
+  roles_.intake = m.rotorIndex("camshaftIntake");
+  roles_.exhaust = m.rotorIndex("camshaftExhaust");
+  roles_.tensionGuide = m.tensioner.present ? m.tensioner.rotor : -1;
+  if (roles_.intake < 0 || roles_.exhaust < 0)
+    log(fmi2Warning, "logStatusWarning",
+        "the drive has no sprocket named camshaftIntake and/or camshaftExhaust: their inputs have no effect and their "
+        "outputs are zero");
+  return true;
+}
+
+// The simulation of model_ with the solver parameters, at its start state on the time grid.
+void Instance::startSimulation() {
+  SimulationOptions opt;
+  opt.integrator.method = params_.method;
+  opt.integrator.rtol = params_.tolerance;
+  opt.integrator.fixedStep = params_.step;
+  opt.integrator.stopAtOutputs = true;
+  opt.contactMethod = params_.contactMethod;
+  opt.jointModel = params_.jointModel;
+  opt.preload.enabled = params_.preload;
+  opt.monitoredLink = params_.linkIndex;
+  auto held = std::make_unique<HeldInputs>(*model_);
+  inputs_ = held.get();
+  sim_ = std::make_unique<Simulation>(model_, opt, std::move(held));
+  applyInputs();
+  sim_->start(time_);
+  const PreloadReport& rep = sim_->preloadReport();
+  log(rep.converged ? fmi2OK : fmi2Warning, rep.converged ? "logEvents" : "logStatusWarning",
+      "start state: %s (%.3f s CPU)", rep.message.c_str(), rep.cpuSeconds);
+  const TimeGrid& grid = sim_->grid();
+  log(fmi2OK, "logEvents",
+      "time grid: t_k = %.17g s + k %.17g s; a communication point within %.3g s of a grid point is that point, "
+      "one farther off is integrated to the grid point before it (output solver.time)",
+      grid.start, grid.unit, kSnapFraction * grid.unit);
+  steps_ = 0;
+  stepHint_ = 0.0;
+  lastSuccessfulTime_ = time_;
 }
 
 void Instance::applyInputs() {
@@ -346,17 +375,13 @@ fmi2Status Instance::terminate() {
 }
 
 fmi2Status Instance::reset() {
-  sim_.reset();
-  inputs_ = nullptr;
-  model_.reset();
+  dropSimulation();
   params_ = Parameters{};
   inCrankSpeed_ = 314.1592653589793;
   inTauIntake_ = inTauExhaust_ = 0.0;
   time_ = startTime_ = stopTime_ = lastSuccessfulTime_ = stepHint_ = 0.0;
   stopTimeDefined_ = false;
   steps_ = 0;
-  prepared_ = false;
-  outputsValid_ = false;
   state_ = kInstantiated;
   return fmi2OK;
 }
@@ -606,10 +631,7 @@ fmi2Status Instance::restore(const Snapshot& s) {
     // A state taken before the model was prepared (instantiated, or initialization mode before
     // any output was asked for) holds no solver state: the solver state reached since is
     // dropped, and fmi2ExitInitializationMode prepares the start state again.
-    sim_.reset();
-    inputs_ = nullptr;
-    model_.reset();
-    prepared_ = false;
+    dropSimulation();
   }
   state_ = s.state == kStepFailed || s.state == kError ? kStepComplete : s.state;
   time_ = s.time;

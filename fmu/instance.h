@@ -96,6 +96,13 @@ class Instance {
   };
 
   fmi2Status prepare();            // assembles the model and the start state (initialization)
+  // the steps of prepare()
+  bool parametersValid();
+  DriveDescription driveDescription();
+  bool applyTensionerOverrides(DriveDescription& desc);
+  bool assignRoles(const Model& m);
+  void startSimulation();
+  void dropSimulation();           // no model, no simulation: prepare() runs again
   bool outputsReady();             // evaluates the outputs if needed
   fmi2Status badVr(const char* function, fmi2ValueReference vr, const char* what);
   fmi2Status parameterChange(const Variable& v);  // only before initialization ends
