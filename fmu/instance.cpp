@@ -5,7 +5,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "drive_description.h"
+#include "description/drive_description.h"
 
 namespace chaindrive::fmu {
 
@@ -344,7 +344,7 @@ fmi2Status Instance::doStep(double cp, double h) {
   applyInputs();
   try {
     // Every communication step integrates from the current grid point to the grid point of
-    // tEnd (src/time_grid.h: tEnd itself when it lies on the grid, else the point before it),
+    // tEnd (src/run/time_grid.h: tEnd itself when it lies on the grid, else the point before it),
     // restarting the integrator there: a step depends on (state, inputs, grid points) only, so
     // a rollback with fmi2SetFMUstate is exact and every master that means the same
     // communication points gets the same bits, however it rounds them.

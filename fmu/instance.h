@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fmi2Functions.h"
-#include "simulation.h"
+#include "run/simulation.h"
 #include "variables.h"
 
 namespace chaindrive::fmu {

@@ -140,7 +140,7 @@ def damped_drive(path, joint, contact):
 
 
 def rotor_angle_states(drive):
-    """{rotor name: index of its angle in the state vector}: the layout of src/assembly.cpp (6 per
+    """{rotor name: index of its angle in the state vector}: the layout of src/assembly/assembly.cpp (6 per
     link, then per rotor its angle and, if free, its rate; sprockets first, then pivoting guides)."""
     idx = 6 * drive["chain"]["numberOfLinks"]
     out = {}

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drive_description.h"
-#include "model.h"
+#include "description/drive_description.h"
+#include "assembly/model.h"
 
 using namespace chaindrive;
 

@@ -15,11 +15,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drive_description.h"
-#include "inputs.h"
-#include "model.h"
-#include "simulation.h"
-#include "state_file.h"
+#include "description/drive_description.h"
+#include "run/inputs.h"
+#include "assembly/model.h"
+#include "run/simulation.h"
+#include "run/state_file.h"
 
 using namespace chaindrive;
 

@@ -5,9 +5,9 @@
 
 #include <arkode/arkode_erkstep.h>
 
-#include "integrators.h"
-#include "sundials_common.h"
-#include "time_grid.h"
+#include "integrators/integrators.h"
+#include "integrators/sundials_common.h"
+#include "run/time_grid.h"
 
 namespace chaindrive {
 

@@ -13,8 +13,8 @@
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "integrators.h"
-#include "sundials_common.h"
+#include "integrators/integrators.h"
+#include "integrators/sundials_common.h"
 
 namespace chaindrive {
 

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <vector>
 
-#include "integrators.h"
-#include "time_grid.h"
+#include "integrators/integrators.h"
+#include "run/time_grid.h"
 
 namespace chaindrive {
 

@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "ode_system.h"
+#include "integrators/ode_system.h"
 
 namespace chaindrive {
 

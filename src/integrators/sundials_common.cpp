@@ -1,4 +1,4 @@
-#include "sundials_common.h"
+#include "integrators/sundials_common.h"
 
 #include <stdexcept>
 

@@ -8,7 +8,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-#include "ode_system.h"
+#include "integrators/ode_system.h"
 
 namespace chaindrive {
 

@@ -17,7 +17,7 @@
 #include "nonsmooth/formulations.h"
 #include "nonsmooth/method.h"
 #include "nonsmooth/system.h"
-#include "time_grid.h"
+#include "run/time_grid.h"
 
 namespace chaindrive::ns {
 

@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "drive_description.h"
-#include "inputs.h"
-#include "model.h"
-#include "simulation.h"
+#include "description/drive_description.h"
+#include "run/inputs.h"
+#include "assembly/model.h"
+#include "run/simulation.h"
 
 namespace chaindrive::test {
 

@@ -1,0 +1,138 @@
+// The assembled, immutable model of a drive (built once from a DriveDescription by assemble())
+// and the layout of the state vector. Everything that changes while stepping lives in Data
+// (data.h). Naming: link quantities are per chain link, rotor quantities per rotating body
+// (sprockets and pivoting guides); the generalized coordinates are the 3 per link (x, y, gamma)
+// followed by one angle per rotor.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "assembly/chain_path.h"
+#include "description/drive_description.h"
+#include "assembly/geometry.h"
+#include "vec2.h"
+
+namespace chaindrive {
+
+struct ChainModel {
+  int links = 0;             // number of links (= joints = rollers)
+  double pitch = 0.0;        // [m]
+  double mass = 0.0;         // [kg] per link
+  double inertia = 0.0;      // [kg m^2] per link
+  double rollerRadius = 0.0; // [m]
+  double plateHalfHeight = 0.0;
+  double jointStiffness = 0.0, jointDamping = 0.0, jointClearance = 0.0;
+};
+
+/// A rotating rigid body: a sprocket (prescribed or free) or a pivoting guide.
+struct RotorModel {
+  std::string name;
+  bool isSprocket = true;
+  int element = -1;          // index into Model::sprockets or Model::guides
+  Vec2 axis;                 // [m]
+  double inertia = 0.0;      // [kg m^2]
+  bool prescribed = false;   // angle follows the crankshaft-speed input
+  int stateAngle = -1;       // index in the state vector
+  int stateRate = -1;        // index in the state vector; -1 when prescribed
+  double initialAngle = 0.0; // [rad] at the assembled pose (math sense)
+};
+
+struct SprocketModel {
+  std::string name;
+  int rotor = -1;
+  Vec2 center;
+  ToothGap gap;
+  double reach2 = 0.0;        // (tip radius + roller radius)^2: rollers beyond cannot touch
+  std::vector<Vec2> gapDirs;  // (cos, sin) of k * 2 pi / z, k = 0..z-1
+};
+
+struct GuideModel {
+  std::string name;
+  int rotor = -1;             // -1: fixed
+  Vec2 pivot;                 // rotation axis (fixed guides: origin)
+  std::vector<GuideFace> faces;
+  Vec2 boundCenter;           // bounding circle of the faces (drawn pose)
+  double boundRadius = 0.0;
+  double mass = 0.0;
+  Vec2 centerOfMass;          // drawn pose
+  double pivotDamping = 0.0;
+};
+
+struct TensionerModel {
+  bool present = false;
+  int rotor = -1;
+  Vec2 housing, direction, pad;  // pad: contact point on the guide at the drawn pose
+  double preload = 0.0, stiffness = 0.0, dampingRetract = 0.0, dampingExtend = 0.0;
+  double nominalStroke = 0.0;    // dot(pad - housing, direction) at the drawn pose
+};
+
+struct ContactLaw {
+  bool huntCrossley = true;
+  double stiffness = 0.0, exponent = 1.0, dampingFactor = 0.0, damping = 0.0, friction = 0.0, restitution = 0.5;
+};
+
+/// A fixed measuring point on a span: the force there is interpolated between the two joints
+/// that bracket it.
+struct SpanProbe {
+  bool present = false;
+  Vec2 point, direction;
+};
+
+/// Nominal (rigid, polygonal) motion of one pin at the assembled pose.
+struct PinNominal {
+  Vec2 position;
+  enum class On { Sprocket, Guide, Span } on = On::Span;
+  int rotor = -1;     // sprocket rotor (On::Sprocket)
+  Vec2 center;        // arc centre (Sprocket/Guide)
+  double radius = 0;  // arc radius (Guide)
+  Vec2 tangent;       // running direction
+};
+
+struct AssemblyReport {
+  std::string closureElement;
+  double closureValue = 0.0;       // guide rotation [rad] or sprocket shift [m]
+  double closureResidual = 0.0;    // [m] gap of the closing joint
+  double maxJointGap = 0.0;        // [m] over all joints at the assembled pose
+  double pathLength = 0.0;         // [m]
+  std::vector<std::string> notes;
+};
+
+struct Model {
+  std::string name;
+  double sense = -1.0;         // running direction: +1 counterclockwise, -1 clockwise
+  Vec2 gravity;
+  ChainModel chain;
+  std::vector<SprocketModel> sprockets;
+  std::vector<GuideModel> guides;
+  std::vector<RotorModel> rotors;
+  TensionerModel tensioner;
+  ContactLaw rollerSprocket, plateGuide;
+  double frictionRegularization = 0.05;
+  int drivenRotor = -1;        // the rotor with prescribed motion, -1 if none
+  std::vector<double> rotorOutputSign;  // (rotors) sprockets: running sense; guides: towards the chain
+  SpanProbe tightSpan, slackSpan;
+  int monitoredLink = 0;
+
+  // state layout: 6 per link (x, y, gamma, vx, vy, omega), then per rotor angle [, rate],
+  // then the two energy accumulators (input work, dissipated energy)
+  int nStates = 0;
+  int nGen = 0;                // generalized force entries: 3 per link + 1 per rotor
+  int stateInputWork = -1, stateDissipated = -1;
+  static int linkState(int link) { return 6 * link; }
+  int rotorGen(int rotor) const { return 3 * chain.links + rotor; }
+
+  // assembled nominal pose
+  ChainPath path;
+  std::vector<PinNominal> pins;  // pin j is link j's rear pin and link j-1's front pin
+  AssemblyReport assembly;
+  DriveDescription description;  // as given (after parameter overrides)
+
+  int rotorIndex(const std::string& name) const;  // -1 if none
+};
+
+/// Builds the model: tooth and guide geometry, the chain path, the closure solve, the rigid
+/// assembled pose. Throws DescriptionError for geometric problems (naming the field).
+Model assemble(const DriveDescription& d);
+
+}  // namespace chaindrive

@@ -1,0 +1,37 @@
+// The start state: the nominal polygonal pose with the nominal motion at the initial crankshaft
+// speed, pre-loaded by a kinetostatic solve: the static equilibrium of all forces (joints,
+// contacts, tensioner, gravity, load torques and friction at the nominal sliding velocities)
+// with the d'Alembert forces of the nominal motion (centripetal accelerations on sprockets and
+// guides), the driven sprocket held. A run at constant speed then starts near its steady state.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dynamics/data.h"
+#include "assembly/model.h"
+
+namespace chaindrive {
+
+struct PreloadOptions {
+  bool enabled = true;
+  int maxIterations = 200;
+  double forceTolerance = 1e-6;  // [N] on link forces; torques scaled by the pitch
+};
+
+struct PreloadReport {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;     // [N] largest scaled residual at the end
+  double cpuSeconds = 0.0;
+  std::string message;
+};
+
+/// The nominal (rigid, unstretched) pose with nominal velocities; energy accumulators zero.
+std::vector<double> nominalState(const Model& m, double crankSpeed);
+
+/// Nominal state, pre-loaded. Throws std::runtime_error if the solve diverges (with the reason).
+std::vector<double> initialState(const Model& m, const InputValues& inputs, const PreloadOptions& opt,
+                                 PreloadReport& report);
+
+}  // namespace chaindrive

@@ -1,0 +1,27 @@
+// Forces on the bodies other than joints and contacts: the tensioner on its guide, load
+// torques on free sprockets, the drive of the prescribed sprocket, guide pivot friction and
+// weight, and the weight of the links.
+#pragma once
+
+#include "dynamics/data.h"
+#include "assembly/model.h"
+
+namespace chaindrive {
+
+struct TensionerResult {
+  double force = 0.0;   // [N] plunger force on the guide (>= 0)
+  double stroke = 0.0;  // [m] plunger extension relative to the nominal (drawn) pose
+  double rate = 0.0;    // [m/s]
+  double torque = 0.0;  // [N m] on the guide rotor (math sense)
+  double power = 0.0;   // dissipated [W]
+  double energy = 0.0;  // spring energy [J]
+};
+TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate);
+
+/// Adds the body forces to d.gen, sets the tensioner outputs; returns {input power, dissipated power}.
+void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated);
+
+/// Potential energy of gravity (links and guide weights) and the tensioner spring.
+double bodyPotentialEnergy(const Model& m, const Data& d, double& gravityEnergy);
+
+}  // namespace chaindrive

@@ -1,0 +1,156 @@
+#include "dynamics/contact_kinematics.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace chaindrive {
+
+LinkKin linkKinematics(const ChainModel& ch, const double* s) {
+  LinkKin k;
+  k.c = Vec2{s[0], s[1]};
+  k.e = Vec2{std::cos(s[2]), std::sin(s[2])};
+  k.v = Vec2{s[3], s[4]};
+  k.w = s[5];
+  const Vec2 half = (0.5 * ch.pitch) * k.e;
+  k.rear = k.c - half;
+  k.front = k.c + half;
+  const Vec2 vHalf = crossWz(k.w, half);
+  k.vRear = k.v - vHalf;
+  k.vFront = k.v + vHalf;
+  return k;
+}
+
+void evaluateKinematics(const Model& m, Data& d, const double* y) {
+  const int n = m.chain.links;
+  for (int i = 0; i < n; ++i) d.links[i] = linkKinematics(m.chain, y + 6 * i);
+  for (std::size_t r = 0; r < m.rotors.size(); ++r) {
+    const RotorModel& ro = m.rotors[r];
+    const double a = y[ro.stateAngle];
+    d.rotorAngle[r] = a;
+    d.rotorCos[r] = std::cos(a);
+    d.rotorSin[r] = std::sin(a);
+    d.rotorRate[r] = ro.prescribed ? m.sense * d.inputs.crankSpeed : y[ro.stateRate];
+  }
+}
+
+bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double /*angle*/,
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp) {
+  const SprocketModel& s = m.sprockets[sprocket];
+  const Vec2 p = end == 0 ? lk.rear : lk.front;
+  const Vec2 rel = p - s.center;
+  if (norm2(rel) > s.reach2) return false;
+  // roller centre in the sprocket frame, then in the frame of the nearest tooth gap
+  const Vec2 body = rotate(rel, cosA, -sinA);
+  const int z = s.gap.teeth;
+  int k = static_cast<int>(std::lround(std::atan2(body.y, body.x) / s.gap.gapAngle));
+  k %= z;
+  if (k < 0) k += z;
+  const Vec2 gd = s.gapDirs[k];
+  const Vec2 local = rotate(body, gd.x, -gd.y);
+  const ProfileHit hit = s.gap.closest(local);
+  const double gap = hit.distance - m.chain.rollerRadius;
+  if (gap >= margin) return false;
+  // back to the world frame: rotation by (rotor angle + k * gapAngle)
+  const double c = cosA * gd.x - sinA * gd.y, sn = sinA * gd.x + cosA * gd.y;
+  const Vec2 nW = rotate(hit.normal, c, sn);
+  const Vec2 qW = s.center + rotate(hit.point, c, sn);
+  cp.kind = ContactPoint::Kind::RollerSprocket;
+  cp.link = link;
+  cp.end = end;
+  cp.element = sprocket;
+  cp.face = -1;
+  cp.rotor = s.rotor;
+  cp.gap = gap;
+  cp.normal = nW;
+  cp.tangent = perp(nW);
+  cp.rLink = p - lk.c;   // the roller turns on its bushing: the force acts at the roller centre
+  cp.rRotor = qW - s.center;
+  const Vec2 vChain = end == 0 ? lk.vRear : lk.vFront;
+  const Vec2 vRel = vChain - crossWz(rate, cp.rRotor);
+  cp.vN = dot(vRel, cp.normal);
+  cp.vT = dot(vRel, cp.tangent);
+  cp.fN = cp.fT = 0.0;
+  return true;
+}
+
+bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
+                          double rate, double margin, ContactPoint& cp) {
+  const GuideModel& g = m.guides[guide];
+  const GuideFace& f = g.faces[face];
+  const Vec2 nNear = faceNormalNear(f, g.pivot, cosA, sinA, lk.c);
+  const Vec2 side = perp(lk.e);
+  const double sgn = dot(side, nNear) > 0.0 ? -1.0 : 1.0;  // the plate edge that faces the guide
+  const Vec2 off = (sgn * m.chain.plateHalfHeight) * side;
+  const FaceHit hit = plateEdgeFaceContact(f, g.pivot, cosA, sinA, lk.rear + off, lk.front + off, sgn * side);
+  if (!hit.valid || hit.gap >= margin) return false;
+  cp.kind = ContactPoint::Kind::PlateGuide;
+  cp.link = link;
+  cp.end = 0;
+  cp.element = guide;
+  cp.face = face;
+  cp.rotor = g.rotor;
+  cp.gap = hit.gap;
+  cp.normal = hit.normal;
+  cp.tangent = perp(hit.normal);
+  cp.rLink = hit.point - lk.c;
+  cp.rRotor = hit.point - g.pivot;
+  const Vec2 vChain = lk.v + crossWz(lk.w, cp.rLink);
+  const Vec2 vRel = g.rotor >= 0 ? vChain - crossWz(rate, cp.rRotor) : vChain;
+  cp.vN = dot(vRel, cp.normal);
+  cp.vT = dot(vRel, cp.tangent);
+  cp.fN = cp.fT = 0.0;
+  return true;
+}
+
+void detectContacts(const Model& m, Data& d, double margin) {
+  const int n = m.chain.links;
+  const int cap = static_cast<int>(d.contacts.size());
+  int count = 0;
+  // rollers sit on the inner links (even index), one at each end
+  for (int i = 0; i < n; i += 2) {
+    const LinkKin& lk = d.links[i];
+    for (int end = 0; end < 2; ++end) {
+      for (std::size_t s = 0; s < m.sprockets.size(); ++s) {
+        const int r = m.sprockets[s].rotor;
+        if (count < cap && rollerSprocketKinematics(m, static_cast<int>(s), i, end, lk, d.rotorAngle[r], d.rotorCos[r],
+                                                    d.rotorSin[r], d.rotorRate[r], margin, d.contacts[count]))
+          ++count;
+      }
+    }
+  }
+  const double reachLink = 0.5 * m.chain.pitch + m.chain.plateHalfHeight + std::fabs(margin);
+  for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
+    const GuideModel& g = m.guides[gi];
+    const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
+    const double sinA = g.rotor >= 0 ? d.rotorSin[g.rotor] : 0.0;
+    const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
+    const Vec2 bc = g.pivot + rotate(g.boundCenter - g.pivot, cosA, sinA);
+    const double reach = g.boundRadius + reachLink;
+    for (int i = 0; i < n; ++i) {
+      const LinkKin& lk = d.links[i];
+      if (norm2(lk.c - bc) > reach * reach) continue;
+      for (std::size_t f = 0; f < g.faces.size(); ++f)
+        if (count < cap &&
+            plateGuideKinematics(m, static_cast<int>(gi), static_cast<int>(f), i, lk, cosA, sinA, rate, margin,
+                                 d.contacts[count]))
+          ++count;
+    }
+  }
+  d.nContacts = count;
+}
+
+bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, std::string& why) {
+  int worst = -1;
+  for (int k = 0; k < n; ++k)
+    if (contacts[k].gap < -limit && (worst < 0 || contacts[k].gap < contacts[worst].gap)) worst = k;
+  if (worst < 0) return false;
+  const ContactPoint& c = contacts[worst];
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "tunnelling: %s contact of link %d penetrates by %.3f mm (limit %.3f mm) at t = %.6f s",
+                c.kind == ContactPoint::Kind::RollerSprocket ? "roller-sprocket" : "plate-guide", c.link, -c.gap * 1e3,
+                limit * 1e3, t);
+  why = buf;
+  return true;
+}
+
+}  // namespace chaindrive

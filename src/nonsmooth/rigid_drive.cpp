@@ -1,0 +1,277 @@
+#include "nonsmooth/rigid_drive.h"
+
+#include <cmath>
+
+#include "dynamics/contact_kinematics.h"
+#include "dynamics/dynamics.h"
+#include "dynamics/health.h"
+
+namespace chaindrive {
+
+namespace {
+
+long long contactId(const ContactPoint& c) {
+  const long long kind = c.kind == ContactPoint::Kind::RollerSprocket ? 0 : 1;
+  return ((((kind * 16384 + c.link) * 2 + c.end) * 256 + c.element) * 256) + (c.face < 0 ? 255 : c.face);
+}
+
+// the same contact pair re-evaluated at another state (for the acceleration terms)
+bool sameContact(const Model& m, const ContactPoint& id, const Data& d, double margin, ContactPoint& out) {
+  const LinkKin& lk = d.links[id.link];
+  const int r = id.rotor;
+  const double cosA = r >= 0 ? d.rotorCos[r] : 1.0, sinA = r >= 0 ? d.rotorSin[r] : 0.0;
+  const double rate = r >= 0 ? d.rotorRate[r] : 0.0, angle = r >= 0 ? d.rotorAngle[r] : 0.0;
+  if (id.kind == ContactPoint::Kind::RollerSprocket)
+    return rollerSprocketKinematics(m, id.element, id.link, id.end, lk, angle, cosA, sinA, rate, margin, out);
+  return plateGuideKinematics(m, id.element, id.face, id.link, lk, cosA, sinA, rate, margin, out);
+}
+
+}  // namespace
+
+RigidContactDrive::RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints,
+                                     const HealthLimits& health)
+    : model_(std::move(m)), in_(in), ideal_(idealJoints), health_(health), d_(*model_), dp_(*model_) {
+  const Model& md = *model_;
+  n_ = 3 * md.chain.links + static_cast<int>(md.rotors.size());
+  minv_.assign(n_, 0.0);
+  for (int i = 0; i < md.chain.links; ++i) {
+    minv_[3 * i] = minv_[3 * i + 1] = 1.0 / md.chain.mass;
+    minv_[3 * i + 2] = 1.0 / md.chain.inertia;
+  }
+  for (std::size_t r = 0; r < md.rotors.size(); ++r)
+    minv_[md.rotorGen(static_cast<int>(r))] = md.rotors[r].prescribed ? 0.0 : 1.0 / md.rotors[r].inertia;
+  y_.assign(md.nStates, 0.0);
+  yp_.assign(md.nStates, 0.0);
+  for (Data* d : {&d_, &dp_}) {
+    d->compliantContacts = false;
+    d->jointForces = !ideal_;
+  }
+  inputs_.loadTorque.assign(md.rotors.size(), 0.0);
+}
+
+void RigidContactDrive::unpack(const double* y, double* q, double* v) const {
+  const Model& m = *model_;
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) {
+      q[3 * i + k] = y[6 * i + k];
+      v[3 * i + k] = y[6 * i + 3 + k];
+    }
+  for (std::size_t r = 0; r < m.rotors.size(); ++r) {
+    const int g = m.rotorGen(static_cast<int>(r));
+    q[g] = y[m.rotors[r].stateAngle];
+    if (m.rotors[r].stateRate >= 0) v[g] = y[m.rotors[r].stateRate];
+  }
+}
+
+void RigidContactDrive::pack(const double* q, const double* v, double* y) const {
+  const Model& m = *model_;
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) {
+      y[6 * i + k] = q[3 * i + k];
+      y[6 * i + 3 + k] = v[3 * i + k];
+    }
+  for (std::size_t r = 0; r < m.rotors.size(); ++r) {
+    const int g = m.rotorGen(static_cast<int>(r));
+    y[m.rotors[r].stateAngle] = q[g];
+    if (m.rotors[r].stateRate >= 0) y[m.rotors[r].stateRate] = v[g];
+  }
+}
+
+void RigidContactDrive::prescribed(double t, double* v, double* a) const {
+  const Model& m = *model_;
+  if (m.drivenRotor < 0) return;
+  in_.evaluate(t, inputs_);
+  const int g = m.rotorGen(m.drivenRotor);
+  v[g] = m.sense * inputs_.crankSpeed;
+  a[g] = m.sense * inputs_.crankAcceleration;
+}
+
+void RigidContactDrive::evaluate(double t, const double* q, const double* v) {
+  pack(q, v, y_.data());
+  generalizedForces(*model_, d_, in_, t, y_.data());
+}
+
+void RigidContactDrive::forces(double t, const double* q, const double* v, double* h) {
+  evaluate(t, q, v);
+  for (int i = 0; i < n_; ++i) h[i] = d_.gen[i];
+}
+
+double RigidContactDrive::dissipatedPower(double t, const double* q, const double* v) {
+  evaluate(t, q, v);
+  return d_.powerDissipated;
+}
+
+double RigidContactDrive::inputPower(double t, const double* q, const double* v) {
+  evaluate(t, q, v);
+  return d_.powerInput;
+}
+
+void RigidContactDrive::constraints(double t, const double* q, const double* v, double margin, bool accelerations,
+                                    ns::ConstraintSet& out) {
+  const Model& m = *model_;
+  out.clear();
+  pack(q, v, y_.data());
+  in_.evaluate(t, d_.inputs);
+  evaluateKinematics(m, d_, y_.data());
+  detectContacts(m, d_, margin);
+  last_.assign(d_.contacts.begin(), d_.contacts.begin() + d_.nContacts);
+  // acceleration terms by central differences of gdot along the motion (q +- eps v, t +- eps),
+  // at fixed v and prescribed velocities: gddot = W qddot + wbar
+  const double eps = 1e-7;
+  std::vector<ContactPoint>* plus = nullptr;
+  std::vector<ContactPoint> cp, cm;
+  if (accelerations) {
+    for (int sgn : {1, -1}) {
+      for (int i = 0; i < m.nStates; ++i) yp_[i] = y_[i];
+      for (int i = 0; i < m.chain.links; ++i)
+        for (int k = 0; k < 3; ++k) yp_[6 * i + k] += sgn * eps * y_[6 * i + 3 + k];
+      // prescribed rotors turn on at their rate at t (their acceleration is in W qddot)
+      dp_.inputs = d_.inputs;
+      for (const RotorModel& r : m.rotors)
+        yp_[r.stateAngle] += sgn * eps * (r.prescribed ? m.sense * d_.inputs.crankSpeed : y_[r.stateRate]);
+      evaluateKinematics(m, dp_, yp_.data());
+      auto& dst = sgn > 0 ? cp : cm;
+      dst.resize(last_.size());
+      for (std::size_t k = 0; k < last_.size(); ++k)
+        if (!sameContact(m, last_[k], dp_, 1.0, dst[k])) dst[k] = last_[k];
+    }
+    plus = &cp;
+  }
+  for (std::size_t k = 0; k < last_.size(); ++k) {
+    const ContactPoint& c = last_[k];
+    const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
+    ns::Contact k2;
+    k2.id = contactId(c);
+    k2.gap = c.gap;
+    k2.tag = static_cast<int>(k);
+    double wl[3], wr;
+    wColumn(c, c.normal, wl, wr);
+    for (int j = 0; j < 3; ++j) k2.wN.add(3 * c.link + j, wl[j]);
+    if (c.rotor >= 0) k2.wN.add(m.rotorGen(c.rotor), wr);
+    wColumn(c, c.tangent, wl, wr);
+    for (int j = 0; j < 3; ++j) k2.wT.add(3 * c.link + j, wl[j]);
+    if (c.rotor >= 0) k2.wT.add(m.rotorGen(c.rotor), wr);
+    k2.mu = k2.muStatic = law.friction;
+    k2.restitution = law.restitution;
+    if (plus) {
+      // wbar = d/dt (W(q)^T v) at fixed v: the relative velocities of the same contact pair at
+      // the states moved forward and backward along the motion
+      const ContactPoint& a = cp[k];
+      const ContactPoint& b = cm[k];
+      k2.wbarN = (a.vN - b.vN) / (2.0 * eps);
+      k2.wbarT = (a.vT - b.vT) / (2.0 * eps);
+    }
+    out.contacts.push_back(k2);
+  }
+  if (ideal_) {
+    // journal bearings replaced by ideal joints: front pin of link j = rear pin of link j+1
+    const int n = m.chain.links;
+    const double hp = 0.5 * m.chain.pitch;
+    for (int j = 0; j < n; ++j) {
+      const int k = j + 1 == n ? 0 : j + 1;
+      const LinkKin& a = d_.links[j];
+      const LinkKin& b = d_.links[k];
+      const Vec2 dpos = a.front - b.rear;
+      const Vec2 pa = hp * perp(a.e), pb = hp * perp(b.e);
+      const Vec2 wbar = -hp * (a.w * a.w * a.e + b.w * b.w * b.e);
+      for (int axis = 0; axis < 2; ++axis) {
+        ns::Bilateral bl;
+        bl.g = axis == 0 ? dpos.x : dpos.y;
+        bl.w.add(3 * j + axis, 1.0);
+        bl.w.add(3 * j + 2, axis == 0 ? pa.x : pa.y);
+        bl.w.add(3 * k + axis, -1.0);
+        bl.w.add(3 * k + 2, axis == 0 ? pb.x : pb.y);
+        bl.wbar = accelerations ? (axis == 0 ? wbar.x : wbar.y) : 0.0;
+        out.bilateral.push_back(bl);
+      }
+    }
+  }
+}
+
+void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, std::vector<ContactPoint>& out) const {
+  out.clear();
+  for (const ns::ContactForce& cf : f) {
+    if (cf.tag < 0 || cf.tag >= static_cast<int>(last_.size())) continue;
+    ContactPoint c = last_[cf.tag];
+    c.fN = cf.fN;
+    c.fT = cf.fT;
+    out.push_back(c);
+  }
+}
+
+bool RigidContactDrive::healthy(double t, const double* q, const double* v, std::string& why) {
+  if (!finiteState(q, n_, why) || !finiteState(v, n_, why)) return false;
+  const Model& m = *model_;
+  pack(q, v, y_.data());
+  evaluateKinematics(m, d_, y_.data());
+  // the contacts of the last constraint evaluation (within the step)
+  return chainHealthy(
+      m, health_, [&](int j) { return norm(d_.links[j].front - d_.links[(j + 1) % m.chain.links].rear); },
+      last_.data(), static_cast<int>(last_.size()), t, why);
+}
+
+RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const std::string& method,
+                                 const IntegratorSettings& s)
+    : sys_(std::move(sys)), method_(method) {
+  q_.assign(sys_->size(), 0.0);
+  v_.assign(sys_->size(), 0.0);
+  if (method == "time-stepping") {
+    ns::MoreauJeanSettings ms;
+    ms.step = s.fixedStep;
+    fixedStep_ = s.fixedStep;
+    ms.gapTolerance = s.gapTolerance;
+    ms.recordLcpDirectory = s.recordLcpDirectory;
+    ms.recordLcpCount = s.recordLcpCount;
+    ns_ = std::make_unique<ns::MoreauJean>(*sys_, ms);
+  } else if (method == "event-driven") {
+    ns::EventDrivenSettings es;
+    es.rtol = s.rtol;
+    es.atolPosition = s.rtol * 1e-3;
+    es.atolVelocity = s.rtol;
+    es.maxStep = s.maxStep;
+    es.stabilization = 2e4;
+    es.reboundThreshold = s.reboundThreshold;
+    es.maxEventsPerSecond = s.maxEventsPerSecond;
+    es.gapTolerance = s.gapTolerance;
+    es.recordLcpDirectory = s.recordLcpDirectory;
+    es.recordLcpCount = s.recordLcpCount;
+    ns_ = std::make_unique<ns::EventDriven>(*sys_, es);
+  } else {
+    throw std::invalid_argument("contact method '" + method + "' is unknown; allowed: compliant, event-driven, time-stepping");
+  }
+}
+
+void RigidIntegrator::reset(double t0, const double* y0) {
+  sys_->unpack(y0, q_.data(), v_.data());
+  const Model& m = sys_->model();
+  ns_->setEnergy(y0[m.stateInputWork], y0[m.stateDissipated]);
+  ns_->reset(t0, q_.data(), v_.data());
+}
+
+void RigidIntegrator::advance(double tout, double* y) {
+  const Model& m = sys_->model();
+  ns_->advance(tout);
+  sys_->pack(ns_->q().data(), ns_->v().data(), y);
+  y[m.stateInputWork] = ns_->inputWork();
+  y[m.stateDissipated] = ns_->dissipated();
+}
+
+IntegratorStats RigidIntegrator::stats() const {
+  const ns::NsStats& n = contactStats();
+  IntegratorStats s;
+  s.steps = n.steps;
+  s.rhsEvaluations = n.rhsEvaluations;
+  return s;
+}
+
+const std::vector<double>& RigidIntegrator::jointForces() const {
+  return ns_->bilateralForces();
+}
+
+const ns::NsStats& RigidIntegrator::contactStats() const { return ns_->stats(); }
+
+void RigidIntegrator::contactPoints(std::vector<ContactPoint>& out) const {
+  sys_->contactPoints(ns_->contactForces(), out);
+}
+
+}  // namespace chaindrive

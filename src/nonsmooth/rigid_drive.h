@@ -1,0 +1,77 @@
+// The chain drive with rigid contacts (and optionally ideal joints) as a NonsmoothSystem for the
+// complementarity methods, and the adapter that lets the Simulation drive those methods through
+// the Integrator interface. The contact kinematics are the same as for the compliant contacts
+// (contact_kinematics.h): gaps, normals, lever arms and the W columns; only the laws differ.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dynamics/data.h"
+#include "integrators/ode_system.h"
+#include "assembly/model.h"
+#include "nonsmooth/event_driven.h"
+#include "nonsmooth/moreau_jean.h"
+#include "nonsmooth/system.h"
+
+namespace chaindrive {
+
+class RigidContactDrive : public ns::NonsmoothSystem {
+ public:
+  RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints, const HealthLimits& health);
+  int size() const override { return n_; }
+  const std::vector<double>& inverseMass() const override { return minv_; }
+  void prescribed(double t, double* v, double* a) const override;
+  void forces(double t, const double* q, const double* v, double* h) override;
+  void constraints(double t, const double* q, const double* v, double margin, bool accelerations,
+                   ns::ConstraintSet& out) override;
+  double dissipatedPower(double t, const double* q, const double* v) override;
+  double inputPower(double t, const double* q, const double* v) override;
+  bool healthy(double t, const double* q, const double* v, std::string& why) override;
+
+  /// State vector (compliant layout, y) <-> (q, v).
+  void unpack(const double* y, double* q, double* v) const;
+  void pack(const double* q, const double* v, double* y) const;
+  /// The contact points of the last constraints() call with the given forces (outputs).
+  void contactPoints(const std::vector<ns::ContactForce>& f, std::vector<ContactPoint>& out) const;
+  bool idealJoints() const { return ideal_; }
+  const Model& model() const { return *model_; }
+
+ private:
+  void evaluate(double t, const double* q, const double* v);  // kinematics and smooth forces into d_
+  std::shared_ptr<const Model> model_;
+  const InputSignal& in_;
+  bool ideal_;
+  HealthLimits health_;
+  int n_;
+  std::vector<double> minv_, y_, yp_;
+  Data d_, dp_;                          // evaluation and perturbed evaluation (wbar)
+  std::vector<ContactPoint> last_;       // contact points of the last constraints() call
+  mutable InputValues inputs_;
+};
+
+/// Rigid-contact method (event-driven or time-stepping) behind the Integrator interface.
+class RigidIntegrator : public Integrator {
+ public:
+  RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const std::string& method, const IntegratorSettings& s);
+  void reset(double t0, const double* y0) override;
+  void advance(double tout, double* y) override;
+  IntegratorStats stats() const override;
+  std::string name() const override { return method_; }
+  double fixedStep() const override { return fixedStep_; }
+  const ns::NsStats& contactStats() const;
+  /// Contact points with the forces of the last step (mean force over it for time stepping).
+  void contactPoints(std::vector<ContactPoint>& out) const;
+  /// Ideal joints: the constraint forces (fx, fy per joint); empty for journal bearings.
+  const std::vector<double>& jointForces() const;
+
+ private:
+  std::shared_ptr<RigidContactDrive> sys_;
+  std::string method_;
+  std::unique_ptr<ns::NonsmoothMethod> ns_;
+  double fixedStep_ = 0.0;  // time stepping: its step; event driven: 0 (adaptive)
+  std::vector<double> q_, v_;
+};
+
+}  // namespace chaindrive

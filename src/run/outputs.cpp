@@ -1,0 +1,94 @@
+#include "run/outputs.h"
+
+#include <cmath>
+
+#include "dynamics/contact_compliant.h"
+
+namespace chaindrive {
+
+double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
+  if (!probe.present) return 0.0;
+  const int n = m.chain.links;
+  const double near = 2.0 * m.chain.pitch;
+  for (int j = 0; j < n; ++j) {
+    const int k = j + 1 == n ? 0 : j + 1;
+    const Vec2 pj = d.links[j].front, pk = d.links[k].front;  // joints j and k
+    const double aj = dot(pj - probe.point, probe.direction), ak = dot(pk - probe.point, probe.direction);
+    if (!(aj <= 0.0 && ak > 0.0)) continue;
+    if (std::fabs(cross(probe.direction, pj - probe.point)) > near) continue;
+    const double w = -aj / (ak - aj);
+    return (1.0 - w) * d.joints[j].tension + w * d.joints[k].tension;
+  }
+  return std::nan("");
+}
+
+void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
+                    Outputs& out, const RigidForces* rigid) {
+  d.compliantContacts = rigid == nullptr;
+  d.jointForces = rigid == nullptr || rigid->joints == nullptr;
+  generalizedForces(m, d, in, t, y);
+  if (rigid && rigid->contacts) {
+    d.nContacts = 0;
+    for (const ContactPoint& c : *rigid->contacts) {
+      if (d.nContacts >= static_cast<int>(d.contacts.size())) break;
+      d.contacts[d.nContacts++] = c;
+      addContactGen(m, c, d.gen.data());
+    }
+  }
+  if (rigid && rigid->joints && static_cast<int>(rigid->joints->size()) == 2 * m.chain.links) {
+    const int n = m.chain.links;
+    for (int j = 0; j < n; ++j) {
+      JointState& js = d.joints[j];
+      js.force = Vec2{(*rigid->joints)[2 * j], (*rigid->joints)[2 * j + 1]};
+      const Vec2 axis = d.links[j].e + d.links[(j + 1) % n].e;
+      const double an = norm(axis);
+      js.tension = an > 0.0 ? dot(js.force, (1.0 / an) * axis) : 0.0;
+      js.deformation = norm(d.links[j].front - d.links[(j + 1) % n].rear);
+    }
+  }
+  const std::vector<double>& sign = m.rotorOutputSign;
+  const std::size_t nr = m.rotors.size();
+  out.time = t;
+  out.rotorAngle.resize(nr);
+  out.rotorRate.resize(nr);
+  out.rotorTorque.assign(nr, 0.0);
+  for (int i = 0; i < d.nContacts; ++i) {
+    const ContactPoint& c = d.contacts[i];
+    if (c.rotor < 0) continue;
+    const Vec2 f = c.fN * c.normal + c.fT * c.tangent;
+    out.rotorTorque[c.rotor] -= cross(c.rRotor, f);
+  }
+  for (std::size_t r = 0; r < nr; ++r) {
+    const RotorModel& ro = m.rotors[r];
+    out.rotorAngle[r] = sign[r] * (d.rotorAngle[r] - (ro.isSprocket ? ro.initialAngle : 0.0));
+    out.rotorRate[r] = sign[r] * d.rotorRate[r];
+    out.rotorTorque[r] *= sign[r];
+  }
+  out.crankTorque = m.drivenRotor >= 0 ? out.rotorTorque[m.drivenRotor] : 0.0;
+  out.tensionerForce = d.tensionerForce;
+  out.tensionerStroke = d.tensionerStroke;
+  out.tensionerRate = d.tensionerRate;
+  out.tightSpanForce = spanForce(m, d, m.tightSpan);
+  out.slackSpanForce = spanForce(m, d, m.slackSpan);
+  const int n = m.chain.links;
+  const int L = (monitoredLink >= 0 && monitoredLink < n) ? monitoredLink : m.monitoredLink;
+  const LinkKin& lk = d.links[L];
+  const JointState& front = d.joints[L];
+  const JointState& rear = d.joints[(L + n - 1) % n];
+  out.linkTension = 0.5 * (dot(front.force, lk.e) + dot(rear.force, lk.e));
+  out.linkPosition = lk.c;
+  out.linkNormalForce = out.linkSprocketForce = out.linkGuideForce = 0.0;
+  for (int i = 0; i < d.nContacts; ++i) {
+    const ContactPoint& c = d.contacts[i];
+    if (c.link != L) continue;
+    out.linkNormalForce += c.fN;
+    (c.kind == ContactPoint::Kind::RollerSprocket ? out.linkSprocketForce : out.linkGuideForce) += c.fN;
+  }
+  out.energy = energyTerms(m, d, y);
+  out.contacts = 0;
+  for (int i = 0; i < d.nContacts; ++i) out.contacts += d.contacts[i].fN > 0.0 ? 1 : 0;
+  out.maxJointDeformation = 0.0;
+  for (int j = 0; j < n; ++j) out.maxJointDeformation = std::max(out.maxJointDeformation, d.joints[j].deformation);
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,45 @@
+// Output quantities at one instant, in the signs users read: sprocket angles and speeds in the
+// running direction (angles from the start), guide angles from the drawn pose, positive in the
+// direction the tensioner pushes (towards the chain).
+#pragma once
+
+#include <vector>
+
+#include "dynamics/data.h"
+#include "dynamics/dynamics.h"
+#include "assembly/model.h"
+
+namespace chaindrive {
+
+struct Outputs {
+  double time = 0.0;
+  std::vector<double> rotorAngle;   // (rotors) [rad]
+  std::vector<double> rotorRate;    // (rotors) [rad/s]
+  std::vector<double> rotorTorque;  // (rotors) [N m] chain (contact) torque on the rotor, output sign
+  double crankTorque = 0.0;         // [N m] chain torque on the driven sprocket, + in running direction
+  double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
+  double tightSpanForce = 0.0, slackSpanForce = 0.0;  // [N]
+  double linkTension = 0.0;         // [N] tensile force of the monitored link
+  double linkNormalForce = 0.0;     // [N] sum of contact normal forces on the monitored link
+  double linkSprocketForce = 0.0, linkGuideForce = 0.0;
+  Vec2 linkPosition;                // [m] centre of the monitored link
+  EnergyTerms energy;
+  int contacts = 0;                 // closed contacts
+  double maxJointDeformation = 0.0; // [m]
+};
+
+/// Constraint forces of the rigid-contact methods, for the outputs.
+struct RigidForces {
+  const std::vector<ContactPoint>* contacts = nullptr;  // contact points with fN, fT set
+  const std::vector<double>* joints = nullptr;          // ideal joints: (fx, fy) per joint on link j's front pin
+};
+
+/// Evaluates the dynamics at (t, y) and fills the outputs. `monitoredLink` overrides the model's.
+/// With `rigid`, the contact (and ideal-joint) forces are those of the complementarity method.
+void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
+                    Outputs& out, const RigidForces* rigid = nullptr);
+
+/// Force at a span probe, interpolated between the two joints that bracket it.
+double spanForce(const Model& m, const Data& d, const SpanProbe& probe);
+
+}  // namespace chaindrive

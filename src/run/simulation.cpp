@@ -1,0 +1,166 @@
+#include "run/simulation.h"
+
+#include <cmath>
+
+#include "dynamics/contact_kinematics.h"
+#include "dynamics/dynamics.h"
+#include "dynamics/health.h"
+
+namespace chaindrive {
+
+DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, const HealthLimits& health)
+    : model_(std::move(m)), in_(in), data_(*model_), jac_(*model_), health_(health) {
+  const Model& md = *model_;
+  velocityOf_.assign(md.nStates, -1);
+  isVelocity_.assign(md.nStates, 0);
+  for (int i = 0; i < md.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) {
+      velocityOf_[6 * i + k] = 6 * i + 3 + k;
+      isVelocity_[6 * i + 3 + k] = 1;
+    }
+  for (const auto& r : md.rotors)
+    if (!r.prescribed) {
+      velocityOf_[r.stateAngle] = r.stateRate;
+      isVelocity_[r.stateRate] = 1;
+    }
+}
+
+int DriveSystem::rhs(double t, const double* y, double* ydot) noexcept {
+  try {
+    forwardCompliant(*model_, data_, in_, t, y, ydot);
+    const int n = model_->nStates;
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(ydot[i])) {
+        lastError_ = "non-finite derivative";
+        return 1;  // recoverable: the integrator retries with a smaller step
+      }
+    return 0;
+  } catch (const std::exception& e) {
+    lastError_ = e.what();
+    return -1;
+  } catch (...) {
+    lastError_ = "unknown exception in the right-hand side";
+    return -1;
+  }
+}
+
+int DriveSystem::jacobian(double t, const double* y, double* values) noexcept {
+  try {
+    jac_.assemble(*model_, data_, in_, t, y, values);
+    return 0;
+  } catch (const std::exception& e) {
+    lastError_ = e.what();
+    return -1;
+  } catch (...) {
+    return -1;
+  }
+}
+
+void DriveSystem::toleranceScales(double* scale) const {
+  const Model& m = *model_;
+  for (int i = 0; i < m.chain.links; ++i) {
+    double* s = scale + 6 * i;
+    s[0] = s[1] = 1e-3;  // m
+    s[2] = 1e-1;         // rad
+    s[3] = s[4] = 1.0;   // m/s
+    s[5] = 1e2;          // rad/s
+  }
+  for (const auto& r : m.rotors) {
+    scale[r.stateAngle] = 1e-2;
+    if (r.stateRate >= 0) scale[r.stateRate] = 10.0;
+  }
+  scale[m.stateInputWork] = 1.0;
+  scale[m.stateDissipated] = 1.0;
+}
+
+bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept {
+  // cheap enough for every fixed step: finiteness of the state, and the joint deformations of
+  // the last right-hand-side evaluation (at or next to this state)
+  const Model& m = *model_;
+  return finiteState(y, m.nStates, why) &&
+         chainHealthy(m, health_, [&](int j) { return data_.joints[j].deformation; }, data_.contacts.data(),
+                      data_.nContacts, t, why);
+}
+
+Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
+                       std::unique_ptr<InputSignal> inputs)
+    : model_(std::move(model)), options_(opt), inputs_(std::move(inputs)) {
+  const DriveDescription& d = model_->description;
+  contactMethod_ = options_.contactMethod.empty() ? d.contact.method : options_.contactMethod;
+  const std::string joints = options_.jointModel.empty() ? d.chain.joint.model : options_.jointModel;
+  if (joints != "journal-bearing" && joints != "ideal")
+    throw std::invalid_argument("joint model '" + joints + "' is unknown; allowed: journal-bearing, ideal");
+  if (contactMethod_ == "compliant") {
+    if (joints == "ideal")
+      throw std::invalid_argument("ideal joints need a rigid-contact method (event-driven or time-stepping); with "
+                                  "compliant contacts use journal-bearing joints");
+    system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.health);
+    integrator_ = makeIntegrator(*system_, options_.integrator);
+  } else if (contactMethod_ == "event-driven" || contactMethod_ == "time-stepping") {
+    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.health);
+    auto ri = std::make_unique<RigidIntegrator>(rigid_, contactMethod_, options_.integrator);
+    rigidIntegrator_ = ri.get();
+    integrator_ = std::move(ri);
+  } else {
+    throw std::invalid_argument("contact method '" + contactMethod_ +
+                                "' is unknown; allowed: compliant, event-driven, time-stepping");
+  }
+  outData_ = std::make_unique<Data>(*model_);
+  y_.assign(model_->nStates, 0.0);
+  const double step = integrator_->fixedStep();
+  grid_.unit = step > 0.0 ? step : kAdaptiveTimeQuantum;
+}
+
+long long Simulation::rhsEvaluations() const {
+  return system_ ? system_->data().rhsEvaluations : rigidIntegrator_->contactStats().rhsEvaluations;
+}
+
+void Simulation::start(double t0) {
+  InputValues v;
+  v.loadTorque.assign(model_->rotors.size(), 0.0);
+  inputs_->evaluate(t0, v);
+  y_ = initialState(*model_, v, options_.preload, preload_);
+  startFrom(t0, y_);
+}
+
+void Simulation::startFrom(double t0, const std::vector<double>& y) {
+  grid_.start = t0;
+  restoreAt(0, y);
+}
+
+void Simulation::restoreAt(long long k, const std::vector<double>& y) {
+  y_ = y;
+  k_ = k;
+  integrator_->reset(time(), y_.data());
+}
+
+void Simulation::restart(double initialStep) {
+  integrator_->setInitialStep(initialStep);
+  integrator_->reset(time(), y_.data());
+}
+
+double Simulation::advanceTo(double t) {
+  if (!grid_.reaches(t))
+    throw std::invalid_argument("time " + std::to_string(t) + " s is beyond the range of the time grid");
+  const long long target = grid_.indexOf(t);
+  if (target > k_) {
+    integrator_->advance(grid_.time(target), y_.data());
+    k_ = target;
+  }
+  return time();
+}
+
+const Outputs& Simulation::outputs() {
+  if (rigidIntegrator_) {
+    rigidIntegrator_->contactPoints(rigidContacts_);
+    RigidForces rf;
+    rf.contacts = &rigidContacts_;
+    if (rigid_->idealJoints()) rf.joints = &rigidIntegrator_->jointForces();
+    computeOutputs(*model_, *outData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_, &rf);
+  } else {
+    computeOutputs(*model_, *outData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_);
+  }
+  return out_;
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,119 @@
+// A simulation run: the model (shared, immutable), its work area, the inputs, the start state
+// and an integrator. The command-line runner and the FMU both drive the solver through this.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dynamics/data.h"
+#include "integrators/ode_system.h"
+#include "dynamics/jacobian.h"
+#include "assembly/model.h"
+#include "run/outputs.h"
+#include "assembly/preload.h"
+#include "nonsmooth/rigid_drive.h"
+#include "run/time_grid.h"
+
+namespace chaindrive {
+
+struct SimulationOptions {
+  IntegratorSettings integrator;      // compliant contacts: the integrator; rigid: fixedStep (time
+                                      // stepping) or rtol (event driven)
+  std::string contactMethod;          // "", "compliant", "event-driven", "time-stepping" ("": the drive's)
+  std::string jointModel;             // "", "journal-bearing", "ideal" ("": the drive's)
+  PreloadOptions preload;
+  HealthLimits health;              // blow-up and tunnelling detection
+  int monitoredLink = -1;           // -1: the model's
+};
+
+/// The compliant-contact chain drive as an ODE system for the integrators.
+class DriveSystem : public OdeSystem {
+ public:
+  DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, const HealthLimits& health);
+  int size() const override { return model_->nStates; }
+  int rhs(double t, const double* y, double* ydot) noexcept override;
+  bool hasJacobian() const override { return true; }
+  int64_t jacobianNonzeros() const override { return jac_.nnz(); }
+  const int64_t* jacobianColumnPointers() const override { return jac_.columnPointers().data(); }
+  const int64_t* jacobianRowIndices() const override { return jac_.rowIndices().data(); }
+  int jacobian(double t, const double* y, double* values) noexcept override;
+  int halfBandwidth() const override { return 11; }
+  void toleranceScales(double* scale) const override;
+  int velocityOf(int i) const override { return velocityOf_[i]; }
+  bool isVelocity(int i) const override { return isVelocity_[i] != 0; }
+  bool healthy(double t, const double* y, std::string& why) noexcept override;
+  const std::string& lastError() const override { return lastError_; }
+  Data& data() { return data_; }
+
+ private:
+  std::shared_ptr<const Model> model_;
+  const InputSignal& in_;
+  Data data_;
+  JacobianAssembler jac_;
+  std::vector<int> velocityOf_;
+  std::vector<char> isVelocity_;
+  HealthLimits health_;
+  std::string lastError_;
+};
+
+class Simulation {
+ public:
+  Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt, std::unique_ptr<InputSignal> inputs);
+
+  /// Pre-loads the start state for the inputs at t0 and starts the integrator there; the run's
+  /// time grid (time_grid.h) starts at t0.
+  void start(double t0);
+  /// Starts from a given state at t0 (a saved state); the time grid starts at t0.
+  void startFrom(double t0, const std::vector<double>& y);
+  /// Starts from a given state at point k of the current time grid (an FMU state restore).
+  void restoreAt(long long k, const std::vector<double>& y);
+  /// Integrates to the grid point of t (time_grid.h: t itself when it is on the grid, otherwise
+  /// the point before it) and returns that point's time; throws IntegrationError (time and
+  /// reason) when the method fails, std::invalid_argument when t is beyond the grid's range. The
+  /// state stays at its last successful value.
+  double advanceTo(double t);
+  /// Restarts the integrator from the current state and grid point (a communication step that
+  /// must not depend on the integrator's history: exact rollback, bit-identical instances).
+  /// `initialStep` is the first step adaptive methods try (0: their own estimate).
+  void restart(double initialStep);
+
+  /// The run's time grid: unit = the fixed step of fixed-step methods, kAdaptiveTimeQuantum for
+  /// adaptive ones; the state is at grid point gridIndex().
+  const TimeGrid& grid() const { return grid_; }
+  long long gridIndex() const { return k_; }
+  double time() const { return grid_.time(k_); }
+  const std::vector<double>& state() const { return y_; }
+  const Model& model() const { return *model_; }
+  InputSignal& inputs() { return *inputs_; }
+  const PreloadReport& preloadReport() const { return preload_; }
+  IntegratorStats integratorStats() const { return integrator_->stats(); }
+  long long rhsEvaluations() const;
+  const std::string& integratorName() const { return options_.integrator.method; }
+  /// The step of a fixed-step method (compliant or time stepping); 0 for adaptive methods.
+  double integratorFixedStep() const { return integrator_->fixedStep(); }
+  const std::string& contactMethod() const { return contactMethod_; }
+  /// Counters of the rigid-contact methods (nullptr for compliant contacts).
+  const ns::NsStats* contactStats() const { return rigidIntegrator_ ? &rigidIntegrator_->contactStats() : nullptr; }
+  /// Outputs at the current state (evaluates the dynamics once more; no allocation after the first call).
+  const Outputs& outputs();
+
+ private:
+  std::shared_ptr<const Model> model_;
+  SimulationOptions options_;
+  std::unique_ptr<InputSignal> inputs_;
+  std::string contactMethod_;
+  std::unique_ptr<DriveSystem> system_;              // compliant contacts
+  std::shared_ptr<RigidContactDrive> rigid_;         // rigid contacts
+  RigidIntegrator* rigidIntegrator_ = nullptr;       // owned by integrator_
+  std::unique_ptr<Integrator> integrator_;
+  std::vector<ContactPoint> rigidContacts_;
+  std::unique_ptr<Data> outData_;
+  std::vector<double> y_;
+  TimeGrid grid_;
+  long long k_ = 0;  // grid index of the state y_
+  PreloadReport preload_;
+  Outputs out_;
+};
+
+}  // namespace chaindrive

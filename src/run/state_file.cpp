@@ -1,0 +1,79 @@
+#include "run/state_file.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace chaindrive {
+
+namespace {
+
+using json = nlohmann::json;
+
+std::string hex(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%a", v);
+  return buf;
+}
+
+double fromHex(const std::string& path, const std::string& field, const json& j) {
+  if (!j.is_string()) throw std::runtime_error(path + ": " + field + " must be a hexadecimal floating-point string");
+  const std::string s = j.get<std::string>();
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v))
+    throw std::runtime_error(path + ": " + field + " = '" + s + "' is not a finite number");
+  return v;
+}
+
+}  // namespace
+
+void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s) {
+  json j;
+  j["schema"] = "chaindrive.state/1";
+  j["drive"] = m.name;
+  j["links"] = m.chain.links;
+  j["states"] = m.nStates;
+  j["time"] = hex(s.time);
+  j["time_s"] = s.time;
+  json y = json::array();
+  for (double v : s.y) y.push_back(hex(v));
+  j["y"] = y;
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot be written");
+  out << j.dump(1) << "\n";
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+StateSnapshot readStateFile(const std::string& path, const Model& m) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot be opened");
+  json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!j.is_object() || j.value("schema", "") != "chaindrive.state/1")
+    throw std::runtime_error(path + ": not a state file (schema must be \"chaindrive.state/1\")");
+  const int links = j.value("links", -1), states = j.value("states", -1);
+  if (links != m.chain.links || states != m.nStates)
+    throw std::runtime_error(path + ": a state of another drive (" + std::to_string(links) + " links, " +
+                             std::to_string(states) + " states; this drive has " + std::to_string(m.chain.links) +
+                             " links, " + std::to_string(m.nStates) + " states)");
+  StateSnapshot s;
+  s.time = fromHex(path, "time", j["time"]);
+  const json& y = j["y"];
+  if (!y.is_array() || static_cast<int>(y.size()) != m.nStates)
+    throw std::runtime_error(path + ": y must be an array of " + std::to_string(m.nStates) + " values");
+  s.y.resize(y.size());
+  for (std::size_t i = 0; i < y.size(); ++i) s.y[i] = fromHex(path, "y[" + std::to_string(i) + "]", y[i]);
+  return s;
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,27 @@
+// A simulation state on disk: the time and the state vector of a drive, bit-exact (hexadecimal
+// floating point), so that a run can continue from where another one stopped (e.g. every method
+// of a study from one settled state past the start transient).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "assembly/model.h"
+
+namespace chaindrive {
+
+struct StateSnapshot {
+  double time = 0.0;
+  std::vector<double> y;
+};
+
+/// Writes the snapshot as JSON (schema "chaindrive.state/1") with the drive's name, number of
+/// links and of states, so that a mismatching drive is recognised on reading.
+void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s);
+
+/// Reads a snapshot for drive m. Throws std::runtime_error naming the file and the problem
+/// (unreadable, not a state file, another drive: links or state count differ, a non-finite or
+/// malformed value).
+StateSnapshot readStateFile(const std::string& path, const Model& m);
+
+}  // namespace chaindrive

@@ -1,0 +1,95 @@
+// Assembly of the default drive: the chain closes at the initial pose, its length is n * p,
+// the nominal pose puts rollers in the tooth gaps, and the preload converges.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dynamics/contact_kinematics.h"
+#include "dynamics/data.h"
+#include "dynamics/dynamics.h"
+#include "assembly/preload.h"
+#include "test_util.h"
+
+using namespace chaindrive;
+using namespace chaindrive::test;
+
+TEST(Assembly, ChainClosesWithAllJointGapsBelowOneNanometre) {
+  const Model m = assemble(defaultDriveDescription());
+  const std::vector<double> y = nominalState(m, 314.0);
+  double worst = 0.0, length = 0.0;
+  const int n = m.chain.links;
+  for (int j = 0; j < n; ++j) {
+    const LinkKin a = linkKinematics(m.chain, &y[6 * j]);
+    const LinkKin b = linkKinematics(m.chain, &y[6 * ((j + 1) % n)]);
+    worst = std::max(worst, norm(a.front - b.rear));
+    length += norm(a.front - a.rear);
+  }
+  // tolerance: the closure solve stops at 1e-14 m; link angles pass through atan2 (1e-16 rad)
+  EXPECT_LT(worst, 1e-9) << "largest joint gap " << worst << " m";
+  EXPECT_NEAR(length, n * m.chain.pitch, 1e-9);
+  EXPECT_LT(m.assembly.closureResidual, 1e-9);
+  // the default drive is designed to close at the tension guide's drawn (nominal) pose
+  EXPECT_LT(std::fabs(m.assembly.closureValue), 1e-6) << "tension guide closes at " << m.assembly.closureValue << " rad";
+}
+
+TEST(Assembly, PinsOnSprocketsSitInToothGapCentres) {
+  const Model m = assemble(defaultDriveDescription());
+  int checked = 0;
+  for (const auto& p : m.pins) {
+    if (p.on != PinNominal::On::Sprocket) continue;
+    const RotorModel& r = m.rotors[p.rotor];
+    const SprocketModel& s = m.sprockets[r.element];
+    const Vec2 rel = p.position - s.center;
+    EXPECT_NEAR(norm(rel), s.gap.pitchRadius, 1e-12);
+    const double rel_angle = wrapAngle(angleOf(rel) - r.initialAngle);
+    const double k = rel_angle / s.gap.gapAngle;
+    EXPECT_NEAR(k, std::round(k), 1e-9) << "pin not at a gap centre on " << s.name;
+    ++checked;
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(Assembly, NominalPoseHasNoPenetrationAndPreloadConverges) {
+  const Model m = assemble(defaultDriveDescription());
+  HeldInputs in(m);
+  in.values.crankSpeed = 314.0;
+  Data d(m);
+  std::vector<double> y = nominalState(m, 314.0);
+  std::vector<double> ydot(m.nStates);
+  forwardCompliant(m, d, in, 0.0, y.data(), ydot.data());
+  for (int i = 0; i < d.nContacts; ++i) EXPECT_GT(d.contacts[i].gap, -1e-7) << "contact " << i;
+  InputValues v = in.values;
+  v.loadTorque[m.rotorIndex("camshaftIntake")] = 3.0;
+  v.loadTorque[m.rotorIndex("camshaftExhaust")] = 3.0;
+  PreloadReport rep;
+  y = initialState(m, v, PreloadOptions{}, rep);
+  EXPECT_TRUE(rep.converged) << rep.message;
+  EXPECT_LE(rep.residual, 1e-6);
+  std::printf("preload: %s, %.3f s CPU\n", rep.message.c_str(), rep.cpuSeconds);
+}
+
+TEST(Geometry, ToothGapClosestPointMatchesADenseOutline) {
+  const Model m = assemble(defaultDriveDescription());
+  const ToothGap& g = m.sprockets[0].gap;
+  const std::vector<Vec2> outline = g.outline(400);
+  // points in gap 0's region, inside the free space
+  int n = 0;
+  for (double r = g.pitchRadius - 2.0e-3; r < g.tipRadius + 2e-3; r += 2.5e-4)
+    for (double a = -0.9 * kPi / g.teeth; a <= 0.9 * kPi / g.teeth; a += 0.02 * kPi / g.teeth) {
+      const Vec2 p = r * unit(a);
+      const ProfileHit h = g.closest(p);
+      double best = 1e300;
+      for (std::size_t k = 0; k + 1 < outline.size(); ++k) {
+        const Vec2 s0 = outline[k], s1 = outline[k + 1];
+        const Vec2 d = s1 - s0;
+        double t = dot(p - s0, d) / std::max(norm2(d), 1e-300);
+        t = std::min(1.0, std::max(0.0, t));
+        best = std::min(best, norm(p - (s0 + t * d)));
+      }
+      // tolerance: the outline polyline has 400 points per arc (chord error < 1e-8 m)
+      EXPECT_NEAR(h.distance, best, 2e-8) << "at r=" << r << " a=" << a;
+      EXPECT_NEAR(norm(h.normal), 1.0, 1e-12);
+      ++n;
+    }
+  EXPECT_GT(n, 500);
+}
