@@ -139,7 +139,7 @@ void detectContacts(const Model& m, Data& d, double margin) {
   d.nContacts = count;
 }
 
-bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, std::string& why) {
+bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, Failure& why) {
   int worst = -1;
   for (int k = 0; k < n; ++k)
     if (contacts[k].gap < -limit && (worst < 0 || contacts[k].gap < contacts[worst].gap)) worst = k;
@@ -149,7 +149,7 @@ bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t
   std::snprintf(buf, sizeof buf, "tunnelling: %s contact of link %d penetrates by %.3f mm (limit %.3f mm) at t = %.6f s",
                 c.kind == ContactPoint::Kind::RollerSprocket ? "roller-sprocket" : "plate-guide", c.link, -c.gap * 1e3,
                 limit * 1e3, t);
-  why = buf;
+  why = {FailureKind::Tunnelling, buf};
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "dynamics/data.h"
+#include "failure.h"
 #include "assembly/model.h"
 
 namespace chaindrive {
@@ -28,7 +29,7 @@ bool plateGuideKinematics(const Model& m, int guide, int face, int link, const L
 /// Tunnelling check: true if some contact of `contacts[0..n)` penetrates deeper than `limit`
 /// [m] (a roller through a tooth, a link through a guide face); `why` then names the contact,
 /// its depth, the limit and the time.
-bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, std::string& why);
+bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, Failure& why);
 
 /// Finds every contact with gap below margin into d.contacts[0 .. d.nContacts). Fixed order:
 /// rollers by link, end and sprocket; then plates by guide, link and face.

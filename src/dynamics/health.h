@@ -1,7 +1,7 @@
 // Health of a running drive state, shared by the compliant drive (DriveSystem) and the
 // rigid-contact drive: a finite state, no joint opened beyond HealthLimits::blowUpDeformation
 // times the pitch, no contact deeper than HealthLimits::tunnellingDepth times the roller radius.
-// Each check returns false with the reason (and the failure kind's keyword) in `why`.
+// Each check returns false with the failure (its kind and reason) in `why`.
 #pragma once
 
 #include <cmath>
@@ -14,10 +14,10 @@
 namespace chaindrive {
 
 /// False if some of x[0..n) is not finite.
-inline bool finiteState(const double* x, int n, std::string& why) {
+inline bool finiteState(const double* x, int n, Failure& why) {
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(x[i])) {
-      why = "non-finite state (component " + std::to_string(i) + ")";
+      why = {FailureKind::NonFinite, "non-finite state (component " + std::to_string(i) + ")"};
       return false;
     }
   return true;
@@ -26,13 +26,13 @@ inline bool finiteState(const double* x, int n, std::string& why) {
 /// The joint and contact checks; opening(j) is the distance [m] by which joint j is opened.
 template <class Opening>
 bool chainHealthy(const Model& m, const HealthLimits& limits, Opening opening, const ContactPoint* contacts,
-                  int nContacts, double t, std::string& why) {
+                  int nContacts, double t, Failure& why) {
   const double limit = limits.blowUpDeformation * m.chain.pitch;
   for (int j = 0; j < m.chain.links; ++j) {
     const double dist = opening(j);
     if (!(dist <= limit)) {
-      why = "blow-up: joint " + std::to_string(j) + " stretched by " + std::to_string(dist * 1e3) + " mm (limit " +
-            std::to_string(limit * 1e3) + " mm) at t = " + std::to_string(t) + " s";
+      why = {FailureKind::BlowUp, "blow-up: joint " + std::to_string(j) + " stretched by " + std::to_string(dist * 1e3) +
+                                      " mm (limit " + std::to_string(limit * 1e3) + " mm) at t = " + std::to_string(t) + " s"};
       return false;
     }
   }

@@ -57,7 +57,7 @@ class ArkodeErk : public Integrator {
       evolve(tout, ARK_NORMAL);
     }
     std::memcpy(y, y_.data(), sizeof(double) * sys_.size());
-    std::string why;
+    Failure why;
     if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
   }
 
@@ -88,17 +88,10 @@ class ArkodeErk : public Integrator {
     if (flag >= 0) return;
     double tcur = t;
     ERKStepGetCurrentTime(mem_, &tcur);
-    char* fname = ERKStepGetReturnFlagName(flag);
-    std::string reason = fname ? fname : "ARKODE error";
-    std::free(fname);
-    if (!sys_.lastError().empty()) reason += "; " + sys_.lastError();
-    if (!cb_.lastSolverMessage.empty()) reason += "; " + cb_.lastSolverMessage;
-    throw IntegrationError(tcur, reason);
+    throw IntegrationError(tcur, sundialsFailure(flag, ERKStepGetReturnFlagName(flag), "ARKODE error", sys_, cb_));
   }
 
-  void check(int flag, const char* what) {
-    if (flag < 0) throw std::runtime_error(std::string(what) + " failed (flag " + std::to_string(flag) + ")");
-  }
+  static void check(int flag, const char* what) { checkFlag(flag, what); }
   OdeSystem& sys_;
   IntegratorSettings settings_;
   bool fixed_;

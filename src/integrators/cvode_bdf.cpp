@@ -90,16 +90,11 @@ class CvodeBdf : public Integrator {
     if (flag < 0) {
       double tcur = t;
       CVodeGetCurrentTime(mem_, &tcur);
-      char* fname = CVodeGetReturnFlagName(flag);
-      std::string reason = std::string(fname ? fname : "CVODE error");
-      std::free(fname);
-      if (!sys_.lastError().empty()) reason += "; " + sys_.lastError();
-      if (!cb_.lastSolverMessage.empty()) reason += "; " + cb_.lastSolverMessage;
-      throw IntegrationError(tcur, reason);
+      throw IntegrationError(tcur, sundialsFailure(flag, CVodeGetReturnFlagName(flag), "CVODE error", sys_, cb_));
     }
     t_ = tout;
     std::memcpy(y, y_.data(), sizeof(double) * sys_.size());
-    std::string why;
+    Failure why;
     if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
     checkNewtonFailures(tout);
   }
@@ -137,14 +132,12 @@ class CvodeBdf : public Integrator {
                     "Newton failure (CV_CONV_FAILURE repeatedly): %ld convergence failures in %ld steps, step size "
                     "%.3g s",
                     df, ds, h);
-      throw IntegrationError(t, buf);
+      throw IntegrationError(t, FailureKind::NewtonFailure, buf);
     }
     windowSteps_ = steps;
     windowFails_ = fails;
   }
-  void check(int flag, const char* what) {
-    if (flag < 0) throw std::runtime_error(std::string(what) + " failed (flag " + std::to_string(flag) + ")");
-  }
+  static void check(int flag, const char* what) { checkFlag(flag, what); }
   OdeSystem& sys_;
   IntegratorSettings settings_;
   bool klu_;

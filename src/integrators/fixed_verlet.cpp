@@ -55,7 +55,7 @@ class FixedVerlet : public Integrator {
  private:
   void eval(double t, const double* y, double* f) {
     const int flag = sys_.rhs(t, y, f);
-    if (flag != 0) throw IntegrationError(t, "right-hand side failed: " + sys_.lastError());
+    if (flag != 0) throw IntegrationError(t, sys_.lastError().kind, "right-hand side failed: " + sys_.lastError().reason);
   }
   // one step of length h ending at the grid time tNext (formed from the index, not accumulated)
   void step(double h, double tNext) {
@@ -72,7 +72,7 @@ class FixedVerlet : public Integrator {
     ++stats_.steps;
     ++stats_.rhsEvaluations;
     stats_.lastStep = h;
-    std::string why;
+    Failure why;
     if (!sys_.healthy(tNext, y, why)) throw IntegrationError(tNext, why);
   }
 

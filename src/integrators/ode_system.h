@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "failure.h"
+
 namespace chaindrive {
 
 class OdeSystem {
@@ -32,9 +34,10 @@ class OdeSystem {
   virtual int velocityOf(int i) const = 0;
   virtual bool isVelocity(int i) const = 0;
   /// Physical sanity of a state reached by a step; false with the reason when it has blown up.
-  virtual bool healthy(double t, const double* y, std::string& why) noexcept = 0;
-  /// The last exception message of a failed callback (callbacks never throw across C).
-  virtual const std::string& lastError() const = 0;
+  virtual bool healthy(double t, const double* y, Failure& why) noexcept = 0;
+  /// The failure of the last failed callback (callbacks never throw across C): its kind
+  /// (non-finite for a derivative that is not finite) and message.
+  virtual const Failure& lastError() const = 0;
 };
 
 struct IntegratorSettings {
@@ -63,43 +66,10 @@ struct IntegratorStats {
   double lastStep = 0.0;
 };
 
-/// Thrown by an integrator when it cannot continue: the time reached and the reason.
 /// What counts as a physically failed state (checked after steps, reported as IntegrationError).
 struct HealthLimits {
   double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch: blow-up
   double tunnellingDepth = 0.5;     // a contact deeper than this fraction of the roller radius: tunnelling
-};
-
-/// The kind of a numerical failure, from its reason: "runaway-events", "tunnelling", "blow-up",
-/// "non-finite", "lcp-ray-termination", "lcp-numerical-failure", "lcp-iteration-limit",
-/// "newton-failure" (corrector or linear solver of an implicit method), "step-size-collapse"
-/// (error-test failures or too many steps: the step size went to zero), or "other".
-inline const char* failureKind(const std::string& reason) {
-  auto has = [&](const char* s) { return reason.find(s) != std::string::npos; };
-  if (has("runaway events")) return "runaway-events";
-  if (has("tunnelling")) return "tunnelling";
-  if (has("blow-up")) return "blow-up";
-  if (has("non-finite") || has("RHSFUNC")) return "non-finite";
-  if (has("RayTermination")) return "lcp-ray-termination";
-  if (has("NumericalFailure")) return "lcp-numerical-failure";
-  if (has("IterationLimit")) return "lcp-iteration-limit";
-  if (has("CONV_FAIL") || has("LSETUP_FAIL") || has("LSOLVE_FAIL")) return "newton-failure";
-  if (has("TOO_MUCH_WORK") || has("ERR_FAIL") || has("TOO_CLOSE")) return "step-size-collapse";
-  return "other";
-}
-
-class IntegrationError : public std::exception {
- public:
-  IntegrationError(double t, std::string reason)
-      : time_(t), reason_(std::move(reason)), what_("integration failed at t = " + std::to_string(t) + " s: " + reason_) {}
-  const char* what() const noexcept override { return what_.c_str(); }
-  double time() const { return time_; }
-  const std::string& reason() const { return reason_; }
-  const char* kind() const { return failureKind(reason_); }
-
- private:
-  double time_;
-  std::string reason_, what_;
 };
 
 class Integrator {

@@ -43,4 +43,16 @@ void chaindriveErrHandler(int code, const char* module, const char* function, ch
 /// Absolute tolerances rtol * scale_i into an N_Vector.
 void fillAbsoluteTolerances(OdeSystem& sys, double rtol, N_Vector atol);
 
+/// Throws std::runtime_error naming the setup call `what` when its flag reports an error.
+void checkFlag(int flag, const char* what);
+
+/// The kind of a failed CVODE or ARKODE step from its return flag (the two solvers share the
+/// numbers of these flags).
+FailureKind sundialsFailureKind(int flag);
+
+/// The failure of a step that returned `flag` (named `flagName` by the solver, or `fallback`):
+/// the system's own diagnosis (a non-finite derivative) before the flag's kind; the reason
+/// names the flag, the system's last error and the solver's last message.
+Failure sundialsFailure(int flag, char* flagName, const char* fallback, const OdeSystem& sys, const CallbackState& cb);
+
 }  // namespace chaindrive

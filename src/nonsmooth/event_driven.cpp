@@ -118,11 +118,12 @@ bool EventDriven::accelerations(double t, const double* q, const double* v, bool
     for (const ContactRow& r : rows_)
       ids += (ids.empty() ? "" : ", ") + std::to_string(r.contact->id) +
              (r.kind == RowKind::SlidingFolded ? " (sliding)" : r.kind == RowKind::Friction ? " (sticking)" : "");
-    lastFailure_ = std::string("acceleration LCP of size ") + std::to_string(s.size) + " has no solution found by Lemke (" +
-                   statusText(s) + ") for the closed contacts " + ids +
-                   (s.status == lcp::Status::RayTermination
-                        ? ": the contact problem is inconsistent (no or several solutions, as in the Painleve paradox)"
-                        : "");
+    lastFailure_.kind = lcpFailureKind(s.status);
+    lastFailure_.reason = std::string("acceleration LCP of size ") + std::to_string(s.size) +
+                          " has no solution found by Lemke (" + statusText(s) + ") for the closed contacts " + ids +
+                          (s.status == lcp::Status::RayTermination
+                               ? ": the contact problem is inconsistent (no or several solutions, as in the Painleve paradox)"
+                               : "");
     return false;
   }
   for (std::size_t k = 0; k < rows_.size(); ++k) {
@@ -163,7 +164,7 @@ int EventDriven::rhs(double t, const double* y, double* ydot) noexcept {
       if (!std::isfinite(ydot[i])) return 1;
     return 0;
   } catch (const std::exception& e) {
-    lastFailure_ = e.what();
+    lastFailure_ = {FailureKind::Other, e.what()};
     return -1;
   }
 }
@@ -288,8 +289,8 @@ void EventDriven::impact(double t) {
     const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
     countSolve(stats_, s);
     if (!s.solved())
-      throw IntegrationError(t, std::string("impact LCP of size ") + std::to_string(s.size) + " not solved: " +
-                                    statusText(s));
+      throw IntegrationError(t, lcpFailureKind(s.status),
+                             std::string("impact LCP of size ") + std::to_string(s.size) + " not solved: " + statusText(s));
     for (std::size_t k = 0; k < rows_.size(); ++k) addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), v_.data());
     for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), v_.data());
     ++stats_.impacts;
@@ -324,7 +325,8 @@ void EventDriven::impact(double t) {
       const ConstraintSolution& s2 = solver_.solve(others, eq, beq, minv_.data(), settings_.maxPivots);
       countSolve(stats_, s2);
       if (!s2.solved())
-        throw IntegrationError(t, std::string("closing (plastic) impact LCP not solved: ") + statusText(s2));
+        throw IntegrationError(t, lcpFailureKind(s2.status),
+                               std::string("closing (plastic) impact LCP not solved: ") + statusText(s2));
       for (std::size_t k = 0; k < others.size(); ++k) addImpulse(others[k].contact->wN, s2.fN[k], minv_.data(), v_.data());
       for (std::size_t k = 0; k < eq.size(); ++k) addImpulse(eq[k]->w, s2.fB[k], minv_.data(), v_.data());
     }
@@ -401,11 +403,14 @@ void EventDriven::advance(double tout) {
   ERKStepSetStopTime(sun_->mem, tout);
   while (t_ < tout) {
     double t = t_;
-    lastFailure_.clear();
+    lastFailure_ = Failure{};
     const int flag = ERKStepEvolve(sun_->mem, tout, sun_->y->v, &t, ARK_ONE_STEP);
     if (flag < 0) {
-      std::string why = lastFailure_.empty() ? std::string("ARKODE flag ") + std::to_string(flag) + ": " + solverMessage_
-                                             : lastFailure_;
+      // the right-hand side's own failure (its constraint problem), else the solver's flag
+      const Failure why = lastFailure_.reason.empty()
+                              ? Failure{sundialsFailureKind(flag),
+                                        std::string("ARKODE flag ") + std::to_string(flag) + ": " + solverMessage_}
+                              : lastFailure_;
       double tcur = t_;
       ERKStepGetCurrentTime(sun_->mem, &tcur);
       throw IntegrationError(tcur, why);
@@ -449,7 +454,7 @@ void EventDriven::advance(double tout) {
       ++eventWindowCount_;
       restart = true;
     }
-    std::string why;
+    Failure why;
     if (!sys_.healthy(t_, q_.data(), v_.data(), why)) throw IntegrationError(t_, why);
     if (eventWindowCount_ >= kEventBatch) {
       // the event rate over the last batch of events
@@ -459,7 +464,7 @@ void EventDriven::advance(double tout) {
         std::snprintf(buf, sizeof buf, "runaway events: %lld events in %.3g s (%.3g per s; limit %.3g per s)",
                       eventWindowCount_, span, span > 0.0 ? static_cast<double>(eventWindowCount_) / span : HUGE_VAL,
                       settings_.maxEventsPerSecond);
-        throw IntegrationError(t_, buf);
+        throw IntegrationError(t_, FailureKind::RunawayEvents, buf);
       }
       eventWindowStart_ = t_;
       eventWindowCount_ = 0;

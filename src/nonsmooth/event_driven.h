@@ -90,7 +90,7 @@ class EventDriven : public NonsmoothMethod {
   std::vector<double> bB_;
   double eventWindowStart_ = 0.0;
   long long eventWindowCount_ = 0;
-  std::string lastFailure_;
+  Failure lastFailure_;  // of the last failed right-hand side (its constraint problem)
   std::string solverMessage_;
   struct Sundials;
   std::unique_ptr<Sundials> sun_;

@@ -46,8 +46,19 @@ struct ConstraintSolution {
   bool solved() const { return status == lcp::Status::Solved; }
 };
 
-/// The status of a solution for failure messages: the Lemke status name (which failureKind()
-/// reads), and for an iteration limit the pivots and the cap of the last attempt.
+/// The kind of failure of a constraint problem that Lemke did not solve.
+inline FailureKind lcpFailureKind(lcp::Status status) {
+  switch (status) {
+    case lcp::Status::RayTermination: return FailureKind::LcpRayTermination;
+    case lcp::Status::IterationLimit: return FailureKind::LcpIterationLimit;
+    case lcp::Status::NumericalFailure: return FailureKind::LcpNumericalFailure;
+    case lcp::Status::Solved: break;
+  }
+  return FailureKind::Other;
+}
+
+/// The status of a solution for failure messages: the Lemke status name, and for an iteration
+/// limit the pivots and the cap of the last attempt.
 inline std::string statusText(const ConstraintSolution& s) {
   std::string text = lcp::statusName(s.status);
   if (s.status == lcp::Status::IterationLimit)

@@ -82,8 +82,8 @@ void MoreauJean::step(double h) {
     const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
     countSolve(stats_, s);
     if (!s.solved())
-      throw IntegrationError(t_, std::string("velocity LCP of size ") + std::to_string(s.size) + " not solved: " +
-                                     statusText(s));
+      throw IntegrationError(t_, lcpFailureKind(s.status),
+                             std::string("velocity LCP of size ") + std::to_string(s.size) + " not solved: " + statusText(s));
     for (std::size_t k = 0; k < rows_.size(); ++k) {
       addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), vnew_.data());
       addImpulse(rows_[k].contact->wT, s.fT[k], minv_.data(), vnew_.data());
@@ -125,7 +125,7 @@ void MoreauJean::step(double h) {
   for (int i = 0; i < n_; ++i) q_[i] = qm_[i] + 0.5 * h * vnew_[i];
   v_.swap(vnew_);
   ++stats_.steps;
-  std::string why;
+  Failure why;
   if (!sys_.healthy(t_ + h, q_.data(), v_.data(), why)) throw IntegrationError(t_ + h, why);
 }
 

@@ -199,7 +199,7 @@ void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, st
   }
 }
 
-bool RigidContactDrive::healthy(double t, const double* q, const double* v, std::string& why) {
+bool RigidContactDrive::healthy(double t, const double* q, const double* v, Failure& why) {
   if (!finiteState(q, n_, why) || !finiteState(v, n_, why)) return false;
   const Model& m = *model_;
   pack(q, v, y_.data());

@@ -28,7 +28,7 @@ class RigidContactDrive : public ns::NonsmoothSystem {
                    ns::ConstraintSet& out) override;
   double dissipatedPower(double t, const double* q, const double* v) override;
   double inputPower(double t, const double* q, const double* v) override;
-  bool healthy(double t, const double* q, const double* v, std::string& why) override;
+  bool healthy(double t, const double* q, const double* v, Failure& why) override;
 
   /// State vector (compliant layout, y) <-> (q, v).
   void unpack(const double* y, double* q, double* v) const;

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "failure.h"
+
 namespace chaindrive::ns {
 
 /// A column of a constraint Jacobian in generalized-velocity space (few non-zeros).
@@ -94,7 +96,7 @@ class NonsmoothSystem {
   /// Power put in by prescribed motion and loads at (t, q, v) through the smooth forces.
   virtual double inputPower(double /*t*/, const double* /*q*/, const double* /*v*/) { return 0.0; }
   /// Physical sanity of a state; false with the reason on blow-up.
-  virtual bool healthy(double /*t*/, const double* /*q*/, const double* /*v*/, std::string& /*why*/) { return true; }
+  virtual bool healthy(double /*t*/, const double* /*q*/, const double* /*v*/, Failure& /*why*/) { return true; }
 };
 
 /// Counters of a complementarity method.

@@ -31,15 +31,15 @@ int DriveSystem::rhs(double t, const double* y, double* ydot) noexcept {
     const int n = model_->nStates;
     for (int i = 0; i < n; ++i)
       if (!std::isfinite(ydot[i])) {
-        lastError_ = "non-finite derivative";
+        lastError_ = {FailureKind::NonFinite, "non-finite derivative"};
         return 1;  // recoverable: the integrator retries with a smaller step
       }
     return 0;
   } catch (const std::exception& e) {
-    lastError_ = e.what();
+    lastError_ = {FailureKind::Other, e.what()};
     return -1;
   } catch (...) {
-    lastError_ = "unknown exception in the right-hand side";
+    lastError_ = {FailureKind::Other, "unknown exception in the right-hand side"};
     return -1;
   }
 }
@@ -49,7 +49,7 @@ int DriveSystem::jacobian(double t, const double* y, double* values) noexcept {
     jac_.assemble(*model_, data_, in_, t, y, values);
     return 0;
   } catch (const std::exception& e) {
-    lastError_ = e.what();
+    lastError_ = {FailureKind::Other, e.what()};
     return -1;
   } catch (...) {
     return -1;
@@ -73,7 +73,7 @@ void DriveSystem::toleranceScales(double* scale) const {
   scale[m.stateDissipated] = 1.0;
 }
 
-bool DriveSystem::healthy(double t, const double* y, std::string& why) noexcept {
+bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
   // cheap enough for every fixed step: finiteness of the state, and the joint deformations of
   // the last right-hand-side evaluation (at or next to this state)
   const Model& m = *model_;

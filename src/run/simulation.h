@@ -42,8 +42,8 @@ class DriveSystem : public OdeSystem {
   void toleranceScales(double* scale) const override;
   int velocityOf(int i) const override { return velocityOf_[i]; }
   bool isVelocity(int i) const override { return isVelocity_[i] != 0; }
-  bool healthy(double t, const double* y, std::string& why) noexcept override;
-  const std::string& lastError() const override { return lastError_; }
+  bool healthy(double t, const double* y, Failure& why) noexcept override;
+  const Failure& lastError() const override { return lastError_; }
   Data& data() { return data_; }
 
  private:
@@ -54,7 +54,7 @@ class DriveSystem : public OdeSystem {
   std::vector<int> velocityOf_;
   std::vector<char> isVelocity_;
   HealthLimits health_;
-  std::string lastError_;
+  Failure lastError_;
 };
 
 class Simulation {

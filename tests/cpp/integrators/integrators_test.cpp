@@ -70,6 +70,9 @@ TEST(Integrators, BlowUpIsDetectedAndReported) {
     EXPECT_LT(e.time(), 0.01);
     EXPECT_TRUE(e.reason().find("blow-up") != std::string::npos || e.reason().find("non-finite") != std::string::npos)
         << e.reason();
+    // the kind is the one the check that found it set, and its keyword agrees with the text
+    EXPECT_TRUE(e.failureKind() == FailureKind::BlowUp || e.failureKind() == FailureKind::NonFinite) << e.kind();
+    EXPECT_NE(e.reason().find(e.kind()), std::string::npos) << e.kind() << ": " << e.reason();
     std::printf("reported: %s\n", e.what());
   }
 }
@@ -88,6 +91,8 @@ TEST(Integrators, SolverFailureCarriesTheFlagAndTime) {
     FAIL() << "expected a failure";
   } catch (const IntegrationError& e) {
     EXPECT_NE(e.reason().find("CV_TOO_MUCH_WORK"), std::string::npos) << e.reason();
+    EXPECT_EQ(e.failureKind(), FailureKind::StepSizeCollapse) << e.kind();
+    EXPECT_STREQ(e.kind(), "step-size-collapse");
     EXPECT_GT(e.time(), 0.0);
   }
 }

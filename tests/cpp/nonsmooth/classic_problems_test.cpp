@@ -301,6 +301,7 @@ TEST(EventDriven, PainleveRodReportsTheInconsistentLcp) {
   } catch (const IntegrationError& err) {
     EXPECT_NE(err.reason().find("inconsistent"), std::string::npos) << err.reason();
     EXPECT_NE(err.reason().find("sliding"), std::string::npos) << err.reason();
+    EXPECT_EQ(err.failureKind(), FailureKind::LcpRayTermination) << err.kind();
     std::printf("reported: %s\n", err.what());
   }
   // with mu below 4/3 the same start is consistent and runs

@@ -77,6 +77,7 @@ TEST(RigidDrive, EventDrivenReportsTheEventStorm) {
     FAIL() << "expected a runaway-event failure";
   } catch (const IntegrationError& e) {
     EXPECT_NE(e.reason().find("runaway events"), std::string::npos) << e.reason();
+    EXPECT_EQ(e.failureKind(), FailureKind::RunawayEvents) << e.kind();
     EXPECT_LT(e.time(), 0.01);
     std::printf("reported: %s\n", e.what());
   }
