@@ -32,6 +32,17 @@ double perturbation(const Model& m, int state) {
   return 1e-6;
 }
 
+// Angle, its cosine and sine, and rate of rotor r in state y (the driven rotor's rate is the
+// crankshaft input).
+void rotorState(const Model& m, const Data& d, const double* y, int r, double& angle, double& c, double& s,
+                double& rate) {
+  const RotorModel& ro = m.rotors[r];
+  angle = y[ro.stateAngle];
+  c = std::cos(angle);
+  s = std::sin(angle);
+  rate = ro.prescribed ? m.sense * d.inputs.crankSpeed : y[ro.stateRate];
+}
+
 }  // namespace
 
 JacobianAssembler::JacobianAssembler(const Model& m) {
@@ -79,19 +90,20 @@ int JacobianAssembler::genRow(const Model& m, int gen) const {
   return m.rotors[gen - n3].stateRate;  // -1 for the driven rotor
 }
 
-// Calls sink(gen, col, dQ/dy) for every element derivative at the state in yWork_.
+// Calls sink(gen, col, dQ/dy) for every element derivative at the state in yWork_: each
+// element's generalized forces, differenced over the few states it depends on.
 template <class Sink>
 void JacobianAssembler::differentiate(const Model& m, Data& d, double /*t*/, Sink&& sink) {
+  differentiateJoints(m, sink);
+  differentiateContacts(m, d, sink);
+  differentiateRotorElements(m, d, sink);
+}
+
+// Joint j couples link j and its successor: 6 forces over their 12 states.
+template <class Sink>
+void JacobianAssembler::differentiateJoints(const Model& m, Sink& sink) {
   const int n = m.chain.links;
   double* y = yWork_.data();
-  auto rotorState = [&](int r, double& angle, double& c, double& s, double& rate) {
-    const RotorModel& ro = m.rotors[r];
-    angle = y[ro.stateAngle];
-    c = std::cos(angle);
-    s = std::sin(angle);
-    rate = ro.prescribed ? m.sense * d.inputs.crankSpeed : y[ro.stateRate];
-  };
-  // ---- joints ----
   for (int j = 0; j < n; ++j) {
     const int k = j + 1 == n ? 0 : j + 1;
     auto eval = [&](double out[6]) {
@@ -117,7 +129,13 @@ void JacobianAssembler::differentiate(const Model& m, Data& d, double /*t*/, Sin
       }
     }
   }
-  // ---- contacts (those closed at the current state) ----
+}
+
+// The contacts closed at the current state: the link's force and torque and the reaction torque
+// on the contact's rotor, over the link's 6 states and the rotor's angle and rate.
+template <class Sink>
+void JacobianAssembler::differentiateContacts(const Model& m, const Data& d, Sink& sink) {
+  double* y = yWork_.data();
   for (int ci = 0; ci < d.nContacts; ++ci) {
     const ContactPoint id = d.contacts[ci];
     const int r = id.rotor;
@@ -125,7 +143,7 @@ void JacobianAssembler::differentiate(const Model& m, Data& d, double /*t*/, Sin
       ContactPoint c;
       const LinkKin lk = linkKinematics(m.chain, y + 6 * id.link);
       double angle = 0, cs = 1, sn = 0, rate = 0;
-      if (r >= 0) rotorState(r, angle, cs, sn, rate);
+      if (r >= 0) rotorState(m, d, y, r, angle, cs, sn, rate);
       bool ok;
       if (id.kind == ContactPoint::Kind::RollerSprocket)
         ok = rollerSprocketKinematics(m, id.element, id.link, id.end, lk, angle, cs, sn, rate, 0.0, c);
@@ -163,13 +181,18 @@ void JacobianAssembler::differentiate(const Model& m, Data& d, double /*t*/, Sin
       }
     }
   }
-  // ---- rotor elements: tensioner, guide pivot damping and weight ----
+}
+
+// The guides' own torques (tensioner, pivot damping and weight) over their angle and rate.
+template <class Sink>
+void JacobianAssembler::differentiateRotorElements(const Model& m, const Data& d, Sink& sink) {
+  double* y = yWork_.data();
   for (const GuideModel& g : m.guides) {
     if (g.rotor < 0) continue;
     const RotorModel& ro = m.rotors[g.rotor];
     auto eval = [&]() {
       double angle, cs, sn, rate;
-      rotorState(g.rotor, angle, cs, sn, rate);
+      rotorState(m, d, y, g.rotor, angle, cs, sn, rate);
       double tq = -g.pivotDamping * rate;
       if (g.mass > 0.0) tq += cross(rotate(g.centerOfMass - g.pivot, cs, sn), g.mass * m.gravity);
       if (m.tensioner.present && m.tensioner.rotor == g.rotor)

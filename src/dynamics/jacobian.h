@@ -34,6 +34,12 @@ class JacobianAssembler {
  private:
   template <class Sink>
   void differentiate(const Model& m, Data& d, double t, Sink&& sink);
+  template <class Sink>
+  void differentiateJoints(const Model& m, Sink& sink);
+  template <class Sink>
+  void differentiateContacts(const Model& m, const Data& d, Sink& sink);
+  template <class Sink>
+  void differentiateRotorElements(const Model& m, const Data& d, Sink& sink);
   int find(int64_t row, int64_t col) const;
   int genRow(const Model& m, int gen) const;  // state row of the acceleration of a generalized index
 

@@ -290,6 +290,9 @@ void LemkeSolver::extractZ(int n, Eigen::Ref<Eigen::VectorXd> z) const {
   }
 }
 
+// Lemke's method as a table of contents: the cheap exits (no variables, non-finite data, q >= 0),
+// the complementary pivoting from the most negative q_i, then the end point judged by its
+// natural-map error and polished.
 Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
                         Eigen::Ref<Eigen::VectorXd> z, int maxPivots) {
   const int n = static_cast<int>(q.size());
@@ -301,19 +304,12 @@ Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen:
     return res;
   }
   reserve(n);
-
-  bool finite = true;
-  for (int j = 0; j < n && finite; ++j) {
-    finite = std::isfinite(q(j));
-    for (int i = 0; i < n && finite; ++i) finite = std::isfinite(M(i, j));
-  }
-  if (!finite) {
+  if (!finiteData(M, q, n)) {
     z.setZero();
     res.status = Status::NumericalFailure;
     res.error = std::numeric_limits<double>::quiet_NaN();
     return res;
   }
-
   // q >= 0: z = 0. Otherwise the row of the most negative q_i leaves when z0 enters; among
   // equal q_i the last row is the lexicographic minimum of the rows (q_i, e_i').
   int r = 0;
@@ -325,7 +321,28 @@ Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen:
     res.error = naturalMapError(M, q, z);
     return res;
   }
+  res.status = pivotFrom(M, q, n, r, maxPivots, res.pivots);
+  extractZ(n, z);
+  res.error = naturalMapError(M, q, z);
+  acceptAndPolish(M, q, z, n, res);
+  return res;
+}
 
+bool LemkeSolver::finiteData(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                             int n) {
+  bool finite = true;
+  for (int j = 0; j < n && finite; ++j) {
+    finite = std::isfinite(q(j));
+    for (int i = 0; i < n && finite; ++i) finite = std::isfinite(M(i, j));
+  }
+  return finite;
+}
+
+// Complementary pivoting from the basis of all w with z0 entering for w_r, until z0 leaves
+// (solved), no row limits the entering column (ray termination), the cap is reached or the
+// basis loses its accuracy. Counts the pivots in `pivots`.
+Status LemkeSolver::pivotFrom(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                              int n, int r, int maxPivots, int& pivots) {
   binv_.topLeftCorner(n, n).setIdentity();
   b_.head(n) = q;
   for (int i = 0; i < n; ++i) basis_[static_cast<std::size_t>(i)] = i;
@@ -337,59 +354,46 @@ Result LemkeSolver::run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen:
   basis_[static_cast<std::size_t>(r)] = 2 * n;
   int entering = n + r;  // the complement of w_r
 
-  int pivots = 0;
-  Status status = Status::NumericalFailure;
+  pivots = 0;
   for (;;) {
-    if (pivots >= maxPivots) {
-      status = Status::IterationLimit;
-      break;
-    }
+    if (pivots >= maxPivots) return Status::IterationLimit;
     double colNorm = 0.0;
     column(M, n, entering, a_.data(), colNorm);
     const int row = ratioTest(n, qNorm, colNorm);
-    if (row < 0) {
-      status = Status::RayTermination;
-      break;
-    }
+    if (row < 0) return Status::RayTermination;
     pivot(n, row);
     ++pivots;
     const int leaving = basis_[static_cast<std::size_t>(row)];
     basis_[static_cast<std::size_t>(row)] = entering;
-    if (leaving == 2 * n) {
-      status = Status::Solved;
-      break;
-    }
+    if (leaving == 2 * n) return Status::Solved;
     entering = leaving < n ? leaving + n : leaving - n;
     bool ok = true;
     for (int i = 0; i < n && ok; ++i) ok = std::isfinite(b_(i));
     if (ok && pivots % kRefactorInterval == 0) ok = refactor(M, q, n);
-    if (!ok) {
-      status = Status::NumericalFailure;
-      break;
-    }
+    if (!ok) return Status::NumericalFailure;
   }
+}
 
-  res.status = status;
-  res.pivots = pivots;
-  extractZ(n, z);
-  res.error = naturalMapError(M, q, z);
-  if ((status == Status::RayTermination || status == Status::IterationLimit) && res.error <= kAcceptedError) {
+// An end point whose error is within kAcceptedError is a solution even after a ray termination
+// or the cap; a solution is polished from a fresh factorization of its basis (the better of the
+// two kept) and must meet kAcceptedError.
+void LemkeSolver::acceptAndPolish(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                  const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z, int n,
+                                  Result& res) {
+  if ((res.status == Status::RayTermination || res.status == Status::IterationLimit) && res.error <= kAcceptedError) {
     // z0 is zero to rounding: the almost-complementary point is a solution (the degenerate last
     // pivot that would take z0 out was lost in rounding)
-    status = res.status = Status::Solved;
+    res.status = Status::Solved;
   }
-  if (status == Status::Solved) {
-    // Polish: the same basis from a fresh factorization; keep the better of the two.
-    zBest_.head(n) = z;
-    if (refactor(M, q, n)) {
-      extractZ(n, z);
-      const double e = naturalMapError(M, q, z);
-      if (e < res.error) res.error = e;
-      else z = zBest_.head(n);
-    }
-    if (!(res.error <= kAcceptedError)) res.status = Status::NumericalFailure;  // also NaN
+  if (res.status != Status::Solved) return;
+  zBest_.head(n) = z;
+  if (refactor(M, q, n)) {
+    extractZ(n, z);
+    const double e = naturalMapError(M, q, z);
+    if (e < res.error) res.error = e;
+    else z = zBest_.head(n);
   }
-  return res;
+  if (!(res.error <= kAcceptedError)) res.status = Status::NumericalFailure;  // also NaN
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -120,6 +120,11 @@ class LemkeSolver {
  private:
   Result run(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
              Eigen::Ref<Eigen::VectorXd> z, int maxPivots);
+  static bool finiteData(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q, int n);
+  Status pivotFrom(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q, int n, int r,
+                   int maxPivots, int& pivots);
+  void acceptAndPolish(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                       Eigen::Ref<Eigen::VectorXd> z, int n, Result& res);
   void column(const Eigen::Ref<const Eigen::MatrixXd>& M, int n, int var, double* a, double& colNorm) const;
   int ratioTest(int n, double qNorm, double colNorm);
   void pivot(int n, int r);

@@ -10,12 +10,34 @@ namespace {
 const SparseColumn& column(const ContactRow& r, int s) { return s == 0 ? r.contact->wN : r.contact->wT; }
 }  // namespace
 
+// The contact forces F_U (normal and tangential per contact row) and the bilateral forces F_B
+// of one constraint problem: the Delassus operator G = W' M^-1 W, the bilateral block condensed
+// out, the LCP in the variables z with F_U = T z, solved by Lemke (regularized on failure), then
+// F_B from the condensed equations.
 const ConstraintSolution& ConstraintSolver::solve(const std::vector<ContactRow>& rows,
                                                   const std::vector<const Bilateral*>& bilateral,
                                                   const std::vector<double>& bB, const double* minv, int maxPivots) {
   const int nc = static_cast<int>(rows.size());
   const int nb = static_cast<int>(bilateral.size());
-  const int nu = 2 * nc;
+  clearSolution(nc, nb);
+  assembleDelassus(rows, minv);
+  if (nb > 0 && !condenseBilateral(rows, bilateral, bB, minv)) {
+    sol_.status = lcp::Status::NumericalFailure;
+    return sol_;
+  }
+  if (nc > 0) {
+    buildForceMap(rows);
+    solveContactLcp(rows, nb, maxPivots);
+    if (sol_.status != lcp::Status::Solved) return sol_;
+    contactForces(rows);
+  } else {
+    F_.resize(0);
+  }
+  if (nb > 0) bilateralForces(nc, nb);
+  return sol_;
+}
+
+void ConstraintSolver::clearSolution(int nc, int nb) {
   sol_.fN.assign(nc, 0.0);
   sol_.fT.assign(nc, 0.0);
   sol_.fB.assign(nb, 0.0);
@@ -24,8 +46,11 @@ const ConstraintSolution& ConstraintSolver::solve(const std::vector<ContactRow>&
   sol_.size = sol_.pivots = 0;
   sol_.error = 0.0;
   sol_.regularized = false;
+}
 
-  // Delassus blocks
+// The unilateral block D = G_UU (normal and tangential direction of each row) and its offsets b.
+void ConstraintSolver::assembleDelassus(const std::vector<ContactRow>& rows, const double* minv) {
+  const int nu = 2 * static_cast<int>(rows.size());
   D_.resize(nu, nu);
   b_.resize(nu);
   for (int a = 0; a < nu; ++a) {
@@ -33,120 +58,138 @@ const ConstraintSolution& ConstraintSolver::solve(const std::vector<ContactRow>&
     b_[a] = a % 2 == 0 ? rows[a / 2].bN : rows[a / 2].bT;
     for (int c = a; c < nu; ++c) D_(a, c) = D_(c, a) = weightedDot(ca, column(rows[c / 2], c % 2), minv);
   }
-  Eigen::LDLT<Eigen::MatrixXd> ldlt;
-  if (nb > 0) {
-    DBB_.resize(nb, nb);
-    DUB_.resize(nu, nb);
-    bBv_.resize(nb);
-    for (int i = 0; i < nb; ++i) {
-      bBv_[i] = bB[i];
-      for (int j = i; j < nb; ++j) DBB_(i, j) = DBB_(j, i) = weightedDot(bilateral[i]->w, bilateral[j]->w, minv);
-      for (int a = 0; a < nu; ++a) DUB_(a, i) = weightedDot(column(rows[a / 2], a % 2), bilateral[i]->w, minv);
-    }
-    // a tiny relative regularisation keeps redundant constraints (if any) solvable
-    const double reg = 1e-13 * (DBB_.diagonal().cwiseAbs().maxCoeff() + 1e-300);
-    for (int i = 0; i < nb; ++i) DBB_(i, i) += reg;
-    ldlt.compute(DBB_);
-    if (ldlt.info() != Eigen::Success) {
-      sol_.status = lcp::Status::NumericalFailure;
-      return sol_;
-    }
-    if (nu > 0) {
-      X_ = ldlt.solve(DUB_.transpose());  // nb x nu
-      D_.noalias() -= DUB_ * X_;
-      b_.noalias() -= X_.transpose() * bBv_;
+}
+
+// The bilateral forces eliminated: D -= G_UB G_BB^-1 G_BU, b -= G_UB G_BB^-1 bB (the
+// factorization kept for bilateralForces). False if G_BB cannot be factorized.
+bool ConstraintSolver::condenseBilateral(const std::vector<ContactRow>& rows,
+                                         const std::vector<const Bilateral*>& bilateral,
+                                         const std::vector<double>& bB, const double* minv) {
+  const int nb = static_cast<int>(bilateral.size());
+  const int nu = 2 * static_cast<int>(rows.size());
+  DBB_.resize(nb, nb);
+  DUB_.resize(nu, nb);
+  bBv_.resize(nb);
+  for (int i = 0; i < nb; ++i) {
+    bBv_[i] = bB[i];
+    for (int j = i; j < nb; ++j) DBB_(i, j) = DBB_(j, i) = weightedDot(bilateral[i]->w, bilateral[j]->w, minv);
+    for (int a = 0; a < nu; ++a) DUB_(a, i) = weightedDot(column(rows[a / 2], a % 2), bilateral[i]->w, minv);
+  }
+  // a tiny relative regularisation keeps redundant constraints (if any) solvable
+  const double reg = 1e-13 * (DBB_.diagonal().cwiseAbs().maxCoeff() + 1e-300);
+  for (int i = 0; i < nb; ++i) DBB_(i, i) += reg;
+  bilateralLdlt_.compute(DBB_);
+  if (bilateralLdlt_.info() != Eigen::Success) return false;
+  if (nu > 0) {
+    X_ = bilateralLdlt_.solve(DUB_.transpose());  // nb x nu
+    D_.noalias() -= DUB_ * X_;
+    b_.noalias() -= X_.transpose() * bBv_;
+  }
+  return true;
+}
+
+// The forces from the LCP variables, F = T z: one variable (F_N) per NormalOnly or SlidingFolded
+// row (F_T = -mu s F_N folded in), three per Friction row, z = (F_N, F'_T, xi) with
+// F_T = F'_T - mu F_N (the header's table).
+void ConstraintSolver::buildForceMap(const std::vector<ContactRow>& rows) {
+  const int nc = static_cast<int>(rows.size());
+  int nz = 0;
+  for (const ContactRow& r : rows) nz += r.kind == RowKind::Friction ? 3 : 1;
+  T_.setZero(2 * nc, nz);
+  int o = 0;
+  for (int c = 0; c < nc; ++c) {
+    const ContactRow& r = rows[c];
+    T_(2 * c, o) = 1.0;
+    if (r.kind == RowKind::Friction) {
+      T_(2 * c + 1, o) = -r.mu;
+      T_(2 * c + 1, o + 1) = 1.0;
+      o += 3;
+    } else {
+      if (r.kind == RowKind::SlidingFolded) T_(2 * c + 1, o) = -r.mu * r.slideSign;
+      o += 1;
     }
   }
-  if (nc > 0) {
-    // forces from LCP variables: F = T z
-    int nz = 0;
-    for (const ContactRow& r : rows) nz += r.kind == RowKind::Friction ? 3 : 1;
-    T_.setZero(nu, nz);
-    int o = 0;
-    for (int c = 0; c < nc; ++c) {
-      const ContactRow& r = rows[c];
-      T_(2 * c, o) = 1.0;
-      if (r.kind == RowKind::Friction) {
-        T_(2 * c + 1, o) = -r.mu;
-        T_(2 * c + 1, o + 1) = 1.0;
-        o += 3;
-      } else {
-        if (r.kind == RowKind::SlidingFolded) T_(2 * c + 1, o) = -r.mu * r.slideSign;
-        o += 1;
-      }
+  z_.resize(nz);
+  sol_.size = nz;
+}
+
+// Lemke on the LCP, first as posed; if it fails, with the regularization, then with 100 times
+// it (see the class comment). Recorded LCPs are written before each solve.
+void ConstraintSolver::solveContactLcp(const std::vector<ContactRow>& rows, int nb, int maxPivots) {
+  const int nc = static_cast<int>(rows.size());
+  const int nu = 2 * nc;
+  double dmax = 0.0;
+  for (int a = 0; a < nu; ++a) dmax = std::max(dmax, D_(a, a));
+  double added = 0.0;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    if (attempt > 0) {
+      if (!(regularization_ > 0.0)) break;
+      const double target = (attempt == 1 ? 1.0 : 100.0) * regularization_ * dmax;
+      for (int a = 0; a < nu; ++a) D_(a, a) += target - added;
+      added = target;
+      sol_.regularized = true;
     }
-    z_.resize(nz);
-    sol_.size = nz;
-    // first as posed; if Lemke fails, with the regularization, then with 100 times it (see the
-    // class comment)
-    double dmax = 0.0;
-    for (int a = 0; a < nu; ++a) dmax = std::max(dmax, D_(a, a));
-    double added = 0.0;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-      if (attempt > 0) {
-        if (!(regularization_ > 0.0)) break;
-        const double target = (attempt == 1 ? 1.0 : 100.0) * regularization_ * dmax;
-        for (int a = 0; a < nu; ++a) D_(a, a) += target - added;
-        added = target;
-        sol_.regularized = true;
-      }
-      M_.setZero(nz, nz);
-      q_.setZero(nz);
-      DT_.noalias() = D_ * T_;
-      o = 0;
-      for (int c = 0; c < nc; ++c) {
-        const ContactRow& r = rows[c];
-        M_.row(o) = DT_.row(2 * c);
-        q_[o] = b_[2 * c];
-        if (r.kind == RowKind::Friction) {
-          M_.row(o + 1) = DT_.row(2 * c + 1);
-          M_(o + 1, o + 2) += 1.0;
-          q_[o + 1] = b_[2 * c + 1];
-          M_(o + 2, o) = 2.0 * r.mu;
-          M_(o + 2, o + 1) = -1.0;
-          o += 3;
-        } else {
-          o += 1;
-        }
-      }
-      if (recordLeft_ > 0) {
-        --recordLeft_;
-        writeLcp(recordDir_ + "/lcp_" + std::to_string(recorded_++) + ".dat", nc, nb);
-      }
-      const lcp::Result res = lemke_.solve(M_, q_, z_, maxPivots);
-      sol_.status = res.status;
-      sol_.pivots += res.pivots;
-      sol_.error = res.error;
-      sol_.last = res;
-      if (res.status == lcp::Status::Solved) break;
-      // a failed LCP is always kept when recording is on, for offline study
-      if (!recordDir_.empty()) writeLcp(recordDir_ + "/lcp_failed_" + std::to_string(failed_++) + ".dat", nc, nb);
+    assembleLcp(rows);
+    if (recordLeft_ > 0) {
+      --recordLeft_;
+      writeLcp(recordDir_ + "/lcp_" + std::to_string(recorded_++) + ".dat", nc, nb);
     }
-    if (sol_.status != lcp::Status::Solved) return sol_;
-    F_ = T_ * z_;
-    o = 0;
-    for (int c = 0; c < nc; ++c) {
-      sol_.fN[c] = F_[2 * c];
-      sol_.fT[c] = F_[2 * c + 1];
-      if (rows[c].kind == RowKind::Friction) {
-        // strictly inside the friction cone: sticking; on its boundary: sliding (or about to)
-        sol_.sticking[c] = std::fabs(sol_.fT[c]) < rows[c].mu * sol_.fN[c] * (1.0 - 1e-9) ? 1 : 0;
-        o += 3;
-      } else {
-        o += 1;
-      }
-    }
-  } else {
-    F_.resize(0);
+    const lcp::Result res = lemke_.solve(M_, q_, z_, maxPivots);
+    sol_.status = res.status;
+    sol_.pivots += res.pivots;
+    sol_.error = res.error;
+    sol_.last = res;
+    if (res.status == lcp::Status::Solved) break;
+    // a failed LCP is always kept when recording is on, for offline study
+    if (!recordDir_.empty()) writeLcp(recordDir_ + "/lcp_failed_" + std::to_string(failed_++) + ".dat", nc, nb);
   }
-  if (nb > 0) {
-    // F_B = -DBB^-1 (bB + DBU F_U)
-    Eigen::VectorXd rhs = bBv_;
-    if (nc > 0) rhs.noalias() += DUB_.transpose() * F_;
-    const Eigen::VectorXd fb = -ldlt.solve(rhs);
-    for (int i = 0; i < nb; ++i) sol_.fB[i] = fb[i];
+}
+
+// (M, q) of the LCP w = M z + q: the rows of D T for u_N (and for Friction rows u_T + xi), and
+// for Friction rows the cone row 2 mu F_N - F'_T.
+void ConstraintSolver::assembleLcp(const std::vector<ContactRow>& rows) {
+  const int nc = static_cast<int>(rows.size());
+  const Eigen::Index nz = z_.size();
+  M_.setZero(nz, nz);
+  q_.setZero(nz);
+  DT_.noalias() = D_ * T_;
+  int o = 0;
+  for (int c = 0; c < nc; ++c) {
+    const ContactRow& r = rows[c];
+    M_.row(o) = DT_.row(2 * c);
+    q_[o] = b_[2 * c];
+    if (r.kind == RowKind::Friction) {
+      M_.row(o + 1) = DT_.row(2 * c + 1);
+      M_(o + 1, o + 2) += 1.0;
+      q_[o + 1] = b_[2 * c + 1];
+      M_(o + 2, o) = 2.0 * r.mu;
+      M_(o + 2, o + 1) = -1.0;
+      o += 3;
+    } else {
+      o += 1;
+    }
   }
-  return sol_;
+}
+
+// F_U = T z per row; a friction row sticks when its force lies strictly inside the cone.
+void ConstraintSolver::contactForces(const std::vector<ContactRow>& rows) {
+  const int nc = static_cast<int>(rows.size());
+  F_ = T_ * z_;
+  for (int c = 0; c < nc; ++c) {
+    sol_.fN[c] = F_[2 * c];
+    sol_.fT[c] = F_[2 * c + 1];
+    // strictly inside the friction cone: sticking; on its boundary: sliding (or about to)
+    if (rows[c].kind == RowKind::Friction)
+      sol_.sticking[c] = std::fabs(sol_.fT[c]) < rows[c].mu * sol_.fN[c] * (1.0 - 1e-9) ? 1 : 0;
+  }
+}
+
+// F_B = -G_BB^-1 (bB + G_BU F_U)
+void ConstraintSolver::bilateralForces(int nc, int nb) {
+  Eigen::VectorXd rhs = bBv_;
+  if (nc > 0) rhs.noalias() += DUB_.transpose() * F_;
+  const Eigen::VectorXd fb = -bilateralLdlt_.solve(rhs);
+  for (int i = 0; i < nb; ++i) sol_.fB[i] = fb[i];
 }
 
 void ConstraintSolver::writeLcp(const std::string& path, int nc, int nb) const {

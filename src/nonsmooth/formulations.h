@@ -100,9 +100,19 @@ class ConstraintSolver {
   }
 
  private:
+  void clearSolution(int nc, int nb);
+  void assembleDelassus(const std::vector<ContactRow>& rows, const double* minv);
+  bool condenseBilateral(const std::vector<ContactRow>& rows, const std::vector<const Bilateral*>& bilateral,
+                         const std::vector<double>& bB, const double* minv);
+  void buildForceMap(const std::vector<ContactRow>& rows);
+  void solveContactLcp(const std::vector<ContactRow>& rows, int nb, int maxPivots);
+  void assembleLcp(const std::vector<ContactRow>& rows);
+  void contactForces(const std::vector<ContactRow>& rows);
+  void bilateralForces(int nc, int nb);
   void writeLcp(const std::string& path, int nc, int nb) const;
 
   lcp::LemkeSolver lemke_;
+  Eigen::LDLT<Eigen::MatrixXd> bilateralLdlt_;  // G_BB of the last problem with bilateral constraints
   ConstraintSolution sol_;
   Eigen::MatrixXd D_, DUB_, DBB_, X_, T_, M_, DT_;
   Eigen::VectorXd b_, bBv_, y_, q_, z_, F_;
