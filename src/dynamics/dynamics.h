@@ -1,6 +1,22 @@
-// The forward dynamics: state -> state derivative, calling the stages in order
-// (kinematics, joints, contacts, body forces, accelerations). This is the right-hand side that
-// every smooth integrator sees, and the table of contents of the model.
+// The forward dynamics: state -> state derivative, calling the stages in order. This is the
+// right-hand side that every smooth integrator sees, and the table of contents of the model.
+//
+// Stages of one evaluation at (t, y), each reading the immutable Model m and writing the work
+// area Data d (dynamics/data.h):
+//   1. inputs        InputSignal::evaluate: crankshaft speed, load torques at t  (run/inputs.h)
+//   2. kinematics    evaluateKinematics: link poses, joint points, rotor angles
+//                                                                (dynamics/contact_kinematics.h)
+//   3. joints        evaluateJoints: journal-bearing forces between neighbouring links
+//                                                                    (dynamics/joint_forces.h)
+//   4. contacts      detectContacts, then evaluateCompliantContacts: roller-sprocket and
+//                    plate-guide gaps, normal and friction forces
+//                                  (dynamics/contact_kinematics.h, dynamics/contact_compliant.h)
+//   5. body forces   evaluateBodyForces: gravity, tensioner, guide pivots, load torques, the
+//                    input and dissipated powers                    (dynamics/body_forces.h)
+//   6. accelerations forwardCompliant: generalized forces over the diagonal mass matrix
+// The rigid-contact methods (nonsmooth/) run stages 1-3 and 5 here and replace stage 4 by their
+// complementarity problems. Beside the stages: the Jacobian by element differences
+// (dynamics/jacobian.h) and the health checks of a state (dynamics/health.h).
 #pragma once
 
 #include "dynamics/data.h"

@@ -57,7 +57,9 @@ class FixedVerlet : public Integrator {
     const int flag = sys_.rhs(t, y, f);
     if (flag != 0) throw IntegrationError(t, sys_.lastError().kind, "right-hand side failed: " + sys_.lastError().reason);
   }
-  // one step of length h ending at the grid time tNext (formed from the index, not accumulated)
+  // One step of length h ending at the grid time tNext (formed from the index, not accumulated):
+  //   v_1/2 = v + h/2 a(t, x, v),   x+ = x + h v_1/2,   v+ = v_1/2 + h/2 a(t + h, x+, v_1/2);
+  //   other components (no velocity state): y+ = y + h/2 (f + f+)
   void step(double h, double tNext) {
     double* y = y_.data();
     const double hh = 0.5 * h;

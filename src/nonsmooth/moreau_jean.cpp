@@ -41,18 +41,37 @@ void MoreauJean::advance(double tout) {
   }
 }
 
+// One step of length h from t_ (the header's scheme):
+//   q_m = q + h/2 v,   v_free = v + h M^-1 h(t + h/2, q_m, v),
+//   M (v+ - v_free) = W P  with the velocity LCP on the active contacts,   q+ = q_m + h/2 v+
 void MoreauJean::step(double h) {
   const double tm = t_ + 0.5 * h;
+  freeMotion(h, tm);
+  activeConstraints(h, tm);
+  const double contactWork = applyImpulses(h);
+  accountEnergy(h, tm, contactWork);
+  for (int i = 0; i < n_; ++i) q_[i] = qm_[i] + 0.5 * h * vnew_[i];
+  v_.swap(vnew_);
+  ++stats_.steps;
+  Failure why;
+  if (!sys_.healthy(t_ + h, q_.data(), v_.data(), why)) throw IntegrationError(t_ + h, why);
+}
+
+// q_m and v_free; prescribed degrees of freedom follow their motion.
+void MoreauJean::freeMotion(double h, double tm) {
   for (int i = 0; i < n_; ++i) qm_[i] = q_[i] + 0.5 * h * v_[i];
   sys_.forces(tm, qm_.data(), v_.data(), h_.data());
   for (int i = 0; i < n_; ++i) vfree_[i] = v_[i] + h * minv_[i] * h_[i];
-  // prescribed degrees of freedom follow their motion
   std::copy(vfree_.begin(), vfree_.end(), presc_.begin());
   sys_.prescribed(t_ + h, presc_.data(), prescAcc_.data());
   for (int i = 0; i < n_; ++i)
     if (minv_[i] == 0.0) vfree_[i] = presc_[i];
+}
 
-  // constraints at the midpoint; contacts predicted closed by the end of the step
+// The rows of the velocity LCP: constraints at the midpoint, contacts predicted closed by the
+// end of the step (Newton restitution in bN; static friction for those that stuck), and the
+// bilateral constraints closing at the end of the step.
+void MoreauJean::activeConstraints(double h, double tm) {
   double vmax = 0.0;
   for (int i = 0; i < n_; ++i) vmax = std::max(vmax, std::fabs(v_[i]));
   sys_.constraints(tm, qm_.data(), v_.data(), std::max(settings_.gapTolerance, 2.0 * h * vmax), false, cs_);
@@ -75,40 +94,49 @@ void MoreauJean::step(double h) {
     bil_.push_back(&b);
     bB_.push_back(b.w.dot(vfree_.data()) + 2.0 * b.g / h);
   }
+}
+
+// v+ = v_free + M^-1 W P from the LCP's impulses; the forces (P / h) and the contacts that stick
+// are kept. Returns the impulses' work on the relative motion (mean of the velocities).
+double MoreauJean::applyImpulses(double h) {
   vnew_ = vfree_;
   forces_.clear();
-  double contactWork = 0.0;  // work of the impulses on the relative motion
-  if (!rows_.empty() || !bil_.empty()) {
-    const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
-    countSolve(stats_, s);
-    if (!s.solved())
-      throw IntegrationError(t_, lcpFailureKind(s.status),
-                             std::string("velocity LCP of size ") + std::to_string(s.size) + " not solved: " + statusText(s));
-    for (std::size_t k = 0; k < rows_.size(); ++k) {
-      addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), vnew_.data());
-      addImpulse(rows_[k].contact->wT, s.fT[k], minv_.data(), vnew_.data());
-    }
-    for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), vnew_.data());
-    bilateralForces_.resize(bil_.size());
-    for (std::size_t k = 0; k < bil_.size(); ++k) bilateralForces_[k] = s.fB[k] / h;
-    // prescribed degrees of freedom are not moved by impulses (minv = 0)
+  double contactWork = 0.0;
+  if (rows_.empty() && bil_.empty()) {
     stuck_.clear();
-    for (std::size_t k = 0; k < rows_.size(); ++k) {
-      const Contact& c = *rows_[k].contact;
-      const double uN = 0.5 * (c.wN.dot(v_.data()) + c.wN.dot(vnew_.data()));
-      const double uT = 0.5 * (c.wT.dot(v_.data()) + c.wT.dot(vnew_.data()));
-      contactWork += s.fN[k] * uN + s.fT[k] * uT;
-      if (s.sticking[k]) stuck_.push_back(c.id);
-      forces_.push_back(ContactForce{c.tag, c.id, s.fN[k] / h, s.fT[k] / h});
-    }
-    for (std::size_t k = 0; k < bil_.size(); ++k)
-      contactWork += s.fB[k] * 0.5 * (bil_[k]->w.dot(v_.data()) + bil_[k]->w.dot(vnew_.data()));
-    std::sort(stuck_.begin(), stuck_.end());
-  } else {
-    stuck_.clear();
+    return contactWork;
   }
-  // energy: smooth input and damping at the midpoint; impulses: their work on the relative
-  // motion is dissipated, except what they do on prescribed degrees of freedom (the drive's work)
+  const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
+  countSolve(stats_, s);
+  if (!s.solved())
+    throw IntegrationError(t_, lcpFailureKind(s.status),
+                           std::string("velocity LCP of size ") + std::to_string(s.size) + " not solved: " + statusText(s));
+  for (std::size_t k = 0; k < rows_.size(); ++k) {
+    addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), vnew_.data());
+    addImpulse(rows_[k].contact->wT, s.fT[k], minv_.data(), vnew_.data());
+  }
+  for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), vnew_.data());
+  bilateralForces_.resize(bil_.size());
+  for (std::size_t k = 0; k < bil_.size(); ++k) bilateralForces_[k] = s.fB[k] / h;
+  // prescribed degrees of freedom are not moved by impulses (minv = 0)
+  stuck_.clear();
+  for (std::size_t k = 0; k < rows_.size(); ++k) {
+    const Contact& c = *rows_[k].contact;
+    const double uN = 0.5 * (c.wN.dot(v_.data()) + c.wN.dot(vnew_.data()));
+    const double uT = 0.5 * (c.wT.dot(v_.data()) + c.wT.dot(vnew_.data()));
+    contactWork += s.fN[k] * uN + s.fT[k] * uT;
+    if (s.sticking[k]) stuck_.push_back(c.id);
+    forces_.push_back(ContactForce{c.tag, c.id, s.fN[k] / h, s.fT[k] / h});
+  }
+  for (std::size_t k = 0; k < bil_.size(); ++k)
+    contactWork += s.fB[k] * 0.5 * (bil_[k]->w.dot(v_.data()) + bil_[k]->w.dot(vnew_.data()));
+  std::sort(stuck_.begin(), stuck_.end());
+  return contactWork;
+}
+
+// Energy: smooth input and damping at the midpoint; impulses: their work on the relative motion
+// is dissipated, except what they do on prescribed degrees of freedom (the drive's work).
+void MoreauJean::accountEnergy(double h, double tm, double contactWork) {
   double drive = 0.0;
   for (std::size_t k = 0; k < rows_.size(); ++k) {
     const Contact& c = *rows_[k].contact;
@@ -122,11 +150,6 @@ void MoreauJean::step(double h) {
   for (int i = 0; i < n_; ++i) h_[i] = 0.5 * (v_[i] + vnew_[i]);  // mean velocity (reuse h_)
   inputWork_ += h * sys_.inputPower(tm, qm_.data(), h_.data()) + drive;
   dissipated_ += h * sys_.dissipatedPower(tm, qm_.data(), h_.data()) - contactWork;
-  for (int i = 0; i < n_; ++i) q_[i] = qm_[i] + 0.5 * h * vnew_[i];
-  v_.swap(vnew_);
-  ++stats_.steps;
-  Failure why;
-  if (!sys_.healthy(t_ + h, q_.data(), v_.data(), why)) throw IntegrationError(t_ + h, why);
 }
 
 }  // namespace chaindrive::ns

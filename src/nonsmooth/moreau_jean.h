@@ -43,6 +43,10 @@ class MoreauJean : public NonsmoothMethod {
 
  private:
   void step(double h);
+  void freeMotion(double h, double tm);
+  void activeConstraints(double h, double tm);
+  double applyImpulses(double h);
+  void accountEnergy(double h, double tm, double contactWork);
 
   NonsmoothSystem& sys_;
   MoreauJeanSettings settings_;
