@@ -85,9 +85,9 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
 Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
                        std::unique_ptr<InputSignal> inputs)
     : model_(std::move(model)), options_(opt), inputs_(std::move(inputs)) {
-  const DriveDescription& d = model_->description;
-  contactMethod_ = options_.contactMethod.empty() ? d.contact.method : options_.contactMethod;
-  const std::string joints = options_.jointModel.empty() ? d.chain.joint.model : options_.jointModel;
+  const DriveDescription& desc = model_->description;
+  contactMethod_ = options_.contactMethod.empty() ? desc.contact.method : options_.contactMethod;
+  const std::string joints = options_.jointModel.empty() ? desc.chain.joint.model : options_.jointModel;
   if (joints != "journal-bearing" && joints != "ideal")
     throw std::invalid_argument("joint model '" + joints + "' is unknown; allowed: journal-bearing, ideal");
   if (contactMethod_ == "compliant") {
