@@ -133,6 +133,6 @@ struct Model {
 
 /// Builds the model: tooth and guide geometry, the chain path, the closure solve, the rigid
 /// assembled pose. Throws DescriptionError for geometric problems (naming the field).
-Model assemble(const DriveDescription& d);
+Model assemble(const DriveDescription& desc);
 
 }  // namespace chaindrive

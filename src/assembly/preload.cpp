@@ -69,6 +69,255 @@ double chainSpeedOf(const Model& m, const std::vector<double>& rates) {
   return std::fabs(rates[ref]) * m.sprockets[m.rotors[ref].element].gap.pitchRadius;
 }
 
+// ---- the steps of initialState() ----
+
+// The loads of the solve besides the conservative forces: the d'Alembert forces of the nominal
+// motion on the links (centripetal accelerations on sprockets and guides).
+std::vector<double> dAlembertForces(const Model& m, double crankSpeed) {
+  const int n = m.chain.links;
+  const std::vector<double> rates = nominalRotorRates(m, crankSpeed);
+  const double v = chainSpeedOf(m, rates);
+  std::vector<double> inertial(m.nGen, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const PinMotion ma = pinMotion(m, m.pins[i], rates, v), mb = pinMotion(m, m.pins[(i + 1) % n], rates, v);
+    const Vec2 ac = 0.5 * (ma.a + mb.a);
+    inertial[3 * i] = m.chain.mass * ac.x;
+    inertial[3 * i + 1] = m.chain.mass * ac.y;
+  }
+  return inertial;
+}
+
+// The free generalized coordinates: all links and the free rotors (the driven sprocket is held).
+struct FreeCoordinates {
+  std::vector<int> index;    // generalized index -> free index, -1 if held
+  std::vector<int> stateOf;  // free index -> state index
+};
+
+FreeCoordinates freeCoordinates(const Model& m) {
+  const int n = m.chain.links;
+  FreeCoordinates fc;
+  fc.index.assign(m.nGen, -1);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      fc.index[3 * i + k] = static_cast<int>(fc.stateOf.size());
+      fc.stateOf.push_back(6 * i + k);
+    }
+  for (std::size_t r = 0; r < m.rotors.size(); ++r)
+    if (!m.rotors[r].prescribed) {
+      fc.index[m.rotorGen(static_cast<int>(r))] = static_cast<int>(fc.stateOf.size());
+      fc.stateOf.push_back(m.rotors[r].stateAngle);
+    }
+  return fc;
+}
+
+// One value per free coordinate: `translation` for link positions, `rotation` for link angles,
+// rotorValue(r) for free rotor r.
+template <class RotorValue>
+std::vector<double> perFreeCoordinate(const Model& m, const FreeCoordinates& fc, double translation, double rotation,
+                                      RotorValue rotorValue) {
+  std::vector<double> v(fc.stateOf.size(), translation);
+  for (int i = 0; i < m.chain.links; ++i) v[fc.index[3 * i + 2]] = rotation;
+  for (std::size_t r = 0; r < m.rotors.size(); ++r)
+    if (!m.rotors[r].prescribed) v[fc.index[m.rotorGen(static_cast<int>(r))]] = rotorValue(r);
+  return v;
+}
+
+// Link and rotor velocities of y: copied from `from`, or zero when `from` is null.
+void setVelocities(const Model& m, std::vector<double>& y, const std::vector<double>* from) {
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 3; k < 6; ++k) y[6 * i + k] = from ? (*from)[6 * i + k] : 0.0;
+  for (const auto& r : m.rotors)
+    if (r.stateRate >= 0) y[r.stateRate] = from ? (*from)[r.stateRate] : 0.0;
+}
+
+// The kinetostatic solve over the free coordinates. It runs at zero velocities (no damping, no
+// regularised friction: their position derivatives at the span/sprocket transitions, where the
+// nominal velocity fields disagree, would make the problem non-symmetric and indefinite). The
+// nominal motion enters through the d'Alembert forces and the guide friction at the nominal
+// sliding velocity.
+//
+// Newton on the potential with a mass-proportional shift (Levenberg-Marquardt): the shift makes
+// the matrix positive definite where the unloaded pose has no stiffness (rollers not yet seated,
+// slack spans) and vanishes near the solution. Steps are accepted by an Armijo line search on the
+// potential, or, near the end where friction makes the residual non-conservative, by a decrease
+// of the residual.
+struct PreloadSolve {
+  PreloadSolve(const Model& model, const InputValues& inputs, const std::vector<double>& inertialForces,
+               const std::vector<double>& nominal);
+
+  /// Iterates on y (velocities zero) until the largest scaled residual is within the tolerance;
+  /// returns the number of iterations. A stalled solve says so in report.message.
+  int run(std::vector<double>& y, const PreloadOptions& opt, PreloadReport& report);
+
+  void addGuideFriction();
+  double residual(const std::vector<double>& yy, Eigen::VectorXd& out);
+  double potential(const std::vector<double>& yy);
+  bool dampedStep(std::vector<double>& y);
+  bool lineSearch(std::vector<double>& y, double& alpha);
+
+  const Model& m;
+  const std::vector<double>& inertial;  // d'Alembert forces per generalized index
+  const std::vector<double>& yNominal;  // the nominal state (its velocities)
+  const FreeCoordinates free;
+  const int nf;
+  Data d;
+  HeldInputs held;
+  JacobianAssembler jac;
+  Eigen::MatrixXd K, A;
+  Eigen::VectorXd res, step, rt;
+  std::vector<double> scale;     // of the residuals: torques on links by the pitch, on rotors by ~ 0.05 m
+  std::vector<double> massDiag;  // of the Levenberg-Marquardt shift
+  std::vector<double> trial;
+  double lambda = std::pow(2.0 * kPi * 100.0, 2);
+  double maxScaled = 0.0;        // largest scaled residual of the last residual() call
+  double r0 = 0.0, rMax = 0.0, p0 = 0.0;  // merit, largest scaled residual and potential at y
+};
+
+PreloadSolve::PreloadSolve(const Model& model, const InputValues& inputs, const std::vector<double>& inertialForces,
+                           const std::vector<double>& nominal)
+    : m(model),
+      inertial(inertialForces),
+      yNominal(nominal),
+      free(freeCoordinates(model)),
+      nf(static_cast<int>(free.stateOf.size())),
+      d(model),
+      held(model),
+      jac(model),
+      K(nf, nf),
+      A(nf, nf),
+      res(nf),
+      step(nf),
+      rt(nf) {
+  held.values = inputs;
+  held.values.loadTorque.resize(m.rotors.size(), 0.0);
+  held.values.crankSpeed = 0.0;  // the driven sprocket is held at rest
+  scale = perFreeCoordinate(m, free, 1.0, 1.0 / m.chain.pitch, [](std::size_t) { return 1.0 / 0.05; });
+  massDiag = perFreeCoordinate(m, free, m.chain.mass, m.chain.inertia,
+                               [this](std::size_t r) { return m.rotors[r].inertia; });
+}
+
+// Coulomb friction of the guides at the nominal sliding velocities (the guides are at rest).
+void PreloadSolve::addGuideFriction() {
+  for (int c = 0; c < d.nContacts; ++c) {
+    const ContactPoint& cp = d.contacts[c];
+    if (cp.kind != ContactPoint::Kind::PlateGuide || cp.fN <= 0.0) continue;
+    const double* s = &yNominal[6 * cp.link];
+    const Vec2 vl = Vec2{s[3], s[4]} + crossWz(s[5], cp.rLink);  // guides are at rest
+    const double vT = dot(vl, cp.tangent);
+    const double fT = -m.plateGuide.friction * cp.fN * vT / std::sqrt(vT * vT + m.frictionRegularization * m.frictionRegularization);
+    ContactPoint f = cp;
+    f.fN = 0.0;
+    f.fT = fT;
+    addContactGen(m, f, d.gen.data());
+  }
+}
+
+// The residual of the free coordinates at yy into `out`; returns the merit (root-mean-square of
+// the scaled residuals) and leaves their maximum, the convergence measure, in maxScaled.
+double PreloadSolve::residual(const std::vector<double>& yy, Eigen::VectorXd& out) {
+  generalizedForces(m, d, held, 0.0, yy.data());
+  addGuideFriction();
+  double mx = 0.0, ss = 0.0;
+  for (int g = 0; g < m.nGen; ++g) {
+    const int f = free.index[g];
+    if (f < 0) continue;
+    out[f] = d.gen[g] - inertial[g];
+    const double sv = std::fabs(out[f]) * scale[f];
+    mx = std::max(mx, sv);
+    ss += sv * sv;
+  }
+  maxScaled = mx;
+  return std::sqrt(ss / nf);
+}
+
+// Total potential of the conservative forces: elastic (joints, contacts, tensioner spring),
+// gravity, the load torques and the d'Alembert forces of the nominal motion. The residual is
+// (nearly) minus its gradient; friction at the nominal sliding velocities is the small rest.
+double PreloadSolve::potential(const std::vector<double>& yy) {
+  generalizedForces(m, d, held, 0.0, yy.data());
+  const EnergyTerms e = energyTerms(m, d, yy.data());
+  double p = e.elastic + e.gravity;
+  for (int g = 0; g < m.nGen; ++g) {
+    const int f = free.index[g];
+    if (f < 0) continue;
+    p += inertial[g] * yy[free.stateOf[f]];
+  }
+  for (std::size_t r = 0; r < m.rotors.size(); ++r)
+    if (m.rotors[r].isSprocket && !m.rotors[r].prescribed)
+      p -= (-m.sense * held.values.loadTorque[r]) * yy[m.rotors[r].stateAngle];
+  return p;
+}
+
+// Backtracking from the full step: accepts the first trial that lowers the potential enough
+// (Armijo) or halves the merit; alpha is the accepted fraction of the step.
+bool PreloadSolve::lineSearch(std::vector<double>& y, double& alpha) {
+  const double slope = -res.dot(step);  // directional derivative of the potential (< 0)
+  for (int ls = 0; ls < 12; ++ls, alpha *= 0.5) {
+    for (int f = 0; f < nf; ++f) trial[free.stateOf[f]] = y[free.stateOf[f]] + alpha * step[f];
+    const double p1 = potential(trial);
+    const double r1 = residual(trial, rt);
+    const double rMax1 = maxScaled;
+    if (std::isfinite(p1) && std::isfinite(r1) && (p1 <= p0 + 1e-4 * alpha * slope || r1 < 0.5 * r0)) {
+      y.swap(trial);
+      res = rt;
+      p0 = p1;
+      r0 = r1;
+      rMax = rMax1;
+      return true;
+    }
+  }
+  return false;
+}
+
+// One step at the stiffness K: the shift lambda grows until the shifted matrix factors and a
+// step is accepted (up to 20 tries), and shrinks after a full step.
+bool PreloadSolve::dampedStep(std::vector<double>& y) {
+  bool accepted = false;
+  for (int tries = 0; tries < 20 && !accepted; ++tries) {
+    A = -K;
+    for (int f = 0; f < nf; ++f) A(f, f) += lambda * massDiag[f];
+    Eigen::LLT<Eigen::MatrixXd> llt(A);
+    if (llt.info() != Eigen::Success) {
+      lambda = std::max(lambda * 10.0, 1.0);
+      continue;
+    }
+    step = llt.solve(res);
+    double alpha = 1.0;
+    accepted = lineSearch(y, alpha);
+    lambda = accepted ? lambda * (alpha == 1.0 ? 0.1 : 1.0) : lambda * 10.0;
+  }
+  return accepted;
+}
+
+int PreloadSolve::run(std::vector<double>& y, const PreloadOptions& opt, PreloadReport& report) {
+  r0 = residual(y, res);
+  rMax = maxScaled;
+  p0 = potential(y);
+  int it = 0;
+  trial = y;
+  for (; it < opt.maxIterations && rMax > opt.forceTolerance; ++it) {
+    jac.stiffness(m, d, held, 0.0, y.data(), free.index, K);
+    if (!dampedStep(y)) {
+      report.message = "preload solve stalled (no step lowers the potential or the residual)";
+      break;
+    }
+  }
+  return it;
+}
+
+// The report of a finished solve: iterations, largest scaled residual, CPU time, how it ended.
+void finishReport(PreloadReport& report, int it, double rMax, const PreloadOptions& opt, double t0) {
+  report.iterations = it;
+  report.residual = rMax;
+  report.converged = rMax <= opt.forceTolerance;
+  report.cpuSeconds = cpuNow() - t0;
+  if (!report.converged && report.message.empty())
+    report.message = "preload solve stopped after " + std::to_string(it) + " iterations with residual " +
+                     std::to_string(rMax) + " N";
+  else if (report.converged)
+    report.message = "preload converged in " + std::to_string(it) + " Newton iterations";
+}
+
 }  // namespace
 
 std::vector<double> nominalState(const Model& m, double crankSpeed) {
@@ -79,15 +328,15 @@ std::vector<double> nominalState(const Model& m, double crankSpeed) {
   for (int i = 0; i < n; ++i) {
     const PinNominal& a = m.pins[i];
     const PinNominal& b = m.pins[(i + 1) % n];
-    const Vec2 d = b.position - a.position;
+    const Vec2 chord = b.position - a.position;
     const Vec2 c = 0.5 * (a.position + b.position);
-    const double len = norm(d);
-    const Vec2 e = (1.0 / len) * d;
+    const double len = norm(chord);
+    const Vec2 e = (1.0 / len) * chord;
     const PinMotion ma = pinMotion(m, a, rates, v), mb = pinMotion(m, b, rates, v);
     double* s = &y[6 * i];
     s[0] = c.x;
     s[1] = c.y;
-    s[2] = angleOf(d);
+    s[2] = angleOf(chord);
     const Vec2 vc = 0.5 * (ma.v + mb.v);
     s[3] = vc.x;
     s[4] = vc.y;
@@ -107,6 +356,8 @@ std::vector<double> nominalState(const Model& m, double crankSpeed) {
   return y;
 }
 
+// A table of contents: the nominal state, the loads, the solve at rest over the free
+// coordinates, then the nominal velocities put back.
 std::vector<double> initialState(const Model& m, const InputValues& inputs, const PreloadOptions& opt,
                                  PreloadReport& report) {
   const double t0 = cpuNow();
@@ -117,168 +368,18 @@ std::vector<double> initialState(const Model& m, const InputValues& inputs, cons
     report.message = "preload disabled";
     return y;
   }
-  const int n = m.chain.links;
-  // nominal accelerations (d'Alembert forces)
-  const std::vector<double> rates = nominalRotorRates(m, inputs.crankSpeed);
-  const double v = chainSpeedOf(m, rates);
-  std::vector<double> inertial(m.nGen, 0.0);
-  for (int i = 0; i < n; ++i) {
-    const PinMotion ma = pinMotion(m, m.pins[i], rates, v), mb = pinMotion(m, m.pins[(i + 1) % n], rates, v);
-    const Vec2 ac = 0.5 * (ma.a + mb.a);
-    inertial[3 * i] = m.chain.mass * ac.x;
-    inertial[3 * i + 1] = m.chain.mass * ac.y;
-  }
-  // free generalized coordinates: all links and the free rotors
-  std::vector<int> freeIndex(m.nGen, -1);
-  std::vector<int> stateOf;  // free index -> state index
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) {
-      freeIndex[3 * i + k] = static_cast<int>(stateOf.size());
-      stateOf.push_back(6 * i + k);
-    }
-  for (std::size_t r = 0; r < m.rotors.size(); ++r)
-    if (!m.rotors[r].prescribed) {
-      freeIndex[m.rotorGen(static_cast<int>(r))] = static_cast<int>(stateOf.size());
-      stateOf.push_back(m.rotors[r].stateAngle);
-    }
-  const int nf = static_cast<int>(stateOf.size());
-  Data d(m);
-  HeldInputs held(m);
-  held.values = inputs;
-  held.values.loadTorque.resize(m.rotors.size(), 0.0);
-  // The solve runs at zero velocities (no damping, no regularised friction: their position
-  // derivatives at the span/sprocket transitions, where the nominal velocity fields disagree,
-  // would make the problem non-symmetric and indefinite). The nominal motion enters through the
-  // d'Alembert forces and the guide friction at the nominal sliding velocity, added below.
-  held.values.crankSpeed = 0.0;
+  // loads: the d'Alembert forces of the nominal motion, fixed during the solve
+  const std::vector<double> inertial = dAlembertForces(m, inputs.crankSpeed);
+  // the solve runs at rest: keep the nominal velocities, zero them in y
   const std::vector<double> yNominal = y;
-  for (int i = 0; i < n; ++i)
-    for (int k = 3; k < 6; ++k) y[6 * i + k] = 0.0;
-  for (const auto& r : m.rotors)
-    if (r.stateRate >= 0) y[r.stateRate] = 0.0;
-  auto addGuideFriction = [&]() {
-    for (int c = 0; c < d.nContacts; ++c) {
-      const ContactPoint& cp = d.contacts[c];
-      if (cp.kind != ContactPoint::Kind::PlateGuide || cp.fN <= 0.0) continue;
-      const double* s = &yNominal[6 * cp.link];
-      const Vec2 vl = Vec2{s[3], s[4]} + crossWz(s[5], cp.rLink);  // guides are at rest
-      const double vT = dot(vl, cp.tangent);
-      const double fT = -m.plateGuide.friction * cp.fN * vT / std::sqrt(vT * vT + m.frictionRegularization * m.frictionRegularization);
-      ContactPoint f = cp;
-      f.fN = 0.0;
-      f.fT = fT;
-      addContactGen(m, f, d.gen.data());
-    }
-  };
-  JacobianAssembler jac(m);
-  Eigen::MatrixXd K(nf, nf);
-  Eigen::VectorXd res(nf), step(nf);
-  // residual scaling: torques on links by the pitch, on rotors by their radius ~ 0.05 m
-  std::vector<double> scale(nf, 1.0);
-  for (int i = 0; i < n; ++i) scale[freeIndex[3 * i + 2]] = 1.0 / m.chain.pitch;
-  for (std::size_t r = 0; r < m.rotors.size(); ++r)
-    if (!m.rotors[r].prescribed) scale[freeIndex[m.rotorGen(static_cast<int>(r))]] = 1.0 / 0.05;
-  // merit: root-mean-square of the scaled residuals; convergence: their maximum
-  double maxScaled = 0.0;
-  auto residual = [&](const std::vector<double>& yy, Eigen::VectorXd& out) {
-    generalizedForces(m, d, held, 0.0, yy.data());
-    addGuideFriction();
-    double mx = 0.0, ss = 0.0;
-    for (int g = 0; g < m.nGen; ++g) {
-      const int f = freeIndex[g];
-      if (f < 0) continue;
-      out[f] = d.gen[g] - inertial[g];
-      const double sv = std::fabs(out[f]) * scale[f];
-      mx = std::max(mx, sv);
-      ss += sv * sv;
-    }
-    maxScaled = mx;
-    return std::sqrt(ss / nf);
-  };
-  // Total potential of the conservative forces: elastic (joints, contacts, tensioner spring),
-  // gravity, the load torques and the d'Alembert forces of the nominal motion. The residual is
-  // (nearly) minus its gradient; friction at the nominal sliding velocities is the small rest.
-  auto potential = [&](const std::vector<double>& yy) {
-    generalizedForces(m, d, held, 0.0, yy.data());
-    const EnergyTerms e = energyTerms(m, d, yy.data());
-    double p = e.elastic + e.gravity;
-    for (int g = 0; g < m.nGen; ++g) {
-      const int f = freeIndex[g];
-      if (f < 0) continue;
-      p += inertial[g] * yy[stateOf[f]];
-    }
-    for (std::size_t r = 0; r < m.rotors.size(); ++r)
-      if (m.rotors[r].isSprocket && !m.rotors[r].prescribed)
-        p -= (-m.sense * held.values.loadTorque[r]) * yy[m.rotors[r].stateAngle];
-    return p;
-  };
-  // Newton on the potential with a mass-proportional shift (Levenberg-Marquardt): the shift
-  // makes the matrix positive definite where the unloaded pose has no stiffness (rollers not
-  // yet seated, slack spans) and vanishes near the solution. Steps are accepted by an Armijo
-  // line search on the potential, or, near the end where friction makes the residual
-  // non-conservative, by a decrease of the residual.
-  std::vector<double> massDiag(nf, m.chain.mass);
-  for (int i = 0; i < n; ++i) massDiag[freeIndex[3 * i + 2]] = m.chain.inertia;
-  for (std::size_t r = 0; r < m.rotors.size(); ++r)
-    if (!m.rotors[r].prescribed) massDiag[freeIndex[m.rotorGen(static_cast<int>(r))]] = m.rotors[r].inertia;
-  double lambda = std::pow(2.0 * kPi * 100.0, 2);
-  double r0 = residual(y, res);
-  double rMax = maxScaled;
-  double p0 = potential(y);
-  int it = 0;
-  std::vector<double> trial(y);
-  Eigen::VectorXd rt(nf);
-  Eigen::MatrixXd A(nf, nf);
-  for (; it < opt.maxIterations && rMax > opt.forceTolerance; ++it) {
-    jac.stiffness(m, d, held, 0.0, y.data(), freeIndex, K);
-    bool accepted = false;
-    for (int tries = 0; tries < 20 && !accepted; ++tries) {
-      A = -K;
-      for (int f = 0; f < nf; ++f) A(f, f) += lambda * massDiag[f];
-      Eigen::LLT<Eigen::MatrixXd> llt(A);
-      if (llt.info() != Eigen::Success) {
-        lambda = std::max(lambda * 10.0, 1.0);
-        continue;
-      }
-      step = llt.solve(res);
-      const double slope = -res.dot(step);  // directional derivative of the potential (< 0)
-      double alpha = 1.0;
-      for (int ls = 0; ls < 12; ++ls, alpha *= 0.5) {
-        for (int f = 0; f < nf; ++f) trial[stateOf[f]] = y[stateOf[f]] + alpha * step[f];
-        const double p1 = potential(trial);
-        const double r1 = residual(trial, rt);
-        const double rMax1 = maxScaled;
-        if (std::isfinite(p1) && std::isfinite(r1) && (p1 <= p0 + 1e-4 * alpha * slope || r1 < 0.5 * r0)) {
-          y.swap(trial);
-          res = rt;
-          p0 = p1;
-          r0 = r1;
-          rMax = rMax1;
-          accepted = true;
-          break;
-        }
-      }
-      lambda = accepted ? lambda * (alpha == 1.0 ? 0.1 : 1.0) : lambda * 10.0;
-    }
-    if (!accepted) {
-      report.message = "preload solve stalled (no step lowers the potential or the residual)";
-      break;
-    }
-  }
-  for (int i = 0; i < n; ++i)
-    for (int k = 3; k < 6; ++k) y[6 * i + k] = yNominal[6 * i + k];
-  for (const auto& r : m.rotors)
-    if (r.stateRate >= 0) y[r.stateRate] = yNominal[r.stateRate];
-  report.iterations = it;
-  report.residual = rMax;
-  report.converged = rMax <= opt.forceTolerance;
-  report.cpuSeconds = cpuNow() - t0;
-  if (!report.converged && report.message.empty())
-    report.message = "preload solve stopped after " + std::to_string(it) + " iterations with residual " +
-                     std::to_string(rMax) + " N";
-  else if (report.converged)
-    report.message = "preload converged in " + std::to_string(it) + " Newton iterations";
-  if (!std::isfinite(r0)) throw std::runtime_error("preload solve diverged (non-finite residual)");
+  setVelocities(m, y, nullptr);
+  // Newton solve over the free coordinates (links and free rotors)
+  PreloadSolve solve(m, inputs, inertial, yNominal);
+  const int it = solve.run(y, opt, report);
+  // the start state: the preloaded pose with the nominal velocities
+  setVelocities(m, y, &yNominal);
+  finishReport(report, it, solve.rMax, opt, t0);
+  if (!std::isfinite(solve.r0)) throw std::runtime_error("preload solve diverged (non-finite residual)");
   return y;
 }
 

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "description/fields.h"
+
 namespace chaindrive {
 
 extern const std::string_view kDefaultDriveJson;  // generated at build time
@@ -22,257 +24,137 @@ std::string joinLines(const std::vector<std::string>& problems) {
   return s;
 }
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
+// ---- readers of the sections, in file order ----
+
+// The drive's name, rotation sense and gravity (the top-level fields).
+void readHeader(Fields& top, DriveDescription& desc) {
+  top.string("schema", {"chaindrive.drive/1"}, std::string("chaindrive.drive/1"));
+  desc.name = top.string("name", {}, std::string("unnamed drive"));
+  top.string("description", {}, std::string(""));
+  const std::string rot = top.string("rotation", {"clockwise", "counterclockwise"}, std::string("clockwise"));
+  desc.rotationSense = rot == "clockwise" ? -1.0 : 1.0;
+  desc.gravity = top.vec2("gravity", 100.0, Vec2{0.0, -9.81}, "m/s^2");
 }
 
-std::string typeName(const json& j) {
-  if (j.is_null()) return "null";
-  if (j.is_boolean()) return "a boolean";
-  if (j.is_number()) return "a number";
-  if (j.is_string()) return "a string";
-  if (j.is_array()) return "an array";
-  return "an object";
+// The pin-bushing joint of the links (journal bearing or ideal).
+void readJoint(Fields jt, JointDesc& joint) {
+  if (!jt.valid()) return;
+  joint.model = jt.string("model", {"journal-bearing", "ideal"}, std::string("journal-bearing"));
+  joint.stiffness = jt.number("stiffness", 0.0, 1e12, std::nullopt, "N/m", true);
+  joint.damping = jt.number("damping", 0.0, 1e6, 0.0, "N s/m");
+  joint.clearance = jt.number("clearance", 0.0, 1e-3, 0.0, "m");
+  jt.finish();
 }
 
-// Reads the fields of one JSON object, collecting problems with their full path. Every field read
-// is remembered so that finish() can report unknown keys.
-class Fields {
- public:
-  Fields(const json* j, std::string path, std::vector<std::string>& problems)
-      : j_(j), path_(std::move(path)), problems_(problems) {
-    if (j_ && !j_->is_object()) {
-      problem(path_, "must be an object, got " + typeName(*j_));
-      j_ = nullptr;
-    }
+// The chain: its links, their joint and the route the chain wraps.
+void readChain(Fields& top, DriveDescription& desc) {
+  Fields c = top.object("chain", true);
+  if (!c.valid()) return;
+  ChainDesc& chain = desc.chain;
+  chain.pitch = c.number("pitch", 1e-3, 0.1, std::nullopt, "m");
+  chain.numberOfLinks = c.integer("numberOfLinks", 10, 10000, std::nullopt);
+  if (chain.numberOfLinks % 2 != 0)
+    c.problem(c.at("numberOfLinks"), std::to_string(chain.numberOfLinks) +
+                                         " is odd; a roller chain alternates inner and outer links, so the "
+                                         "number must be even");
+  chain.linkMass = c.number("linkMass", 0.0, 10.0, std::nullopt, "kg", true);
+  chain.linkInertia = c.number("linkInertia", 0.0, 1.0, std::nullopt, "kg m^2", true);
+  chain.rollerDiameter = c.number("rollerDiameter", 1e-4, 0.1, std::nullopt, "m");
+  chain.plateHeight = c.number("plateHeight", 1e-4, 0.2, std::nullopt, "m");
+  c.string("standard", {}, std::string(""));
+  if (std::isfinite(chain.rollerDiameter) && std::isfinite(chain.pitch) && chain.rollerDiameter >= chain.pitch)
+    c.problem(c.at("rollerDiameter"), formatNumber(chain.rollerDiameter) + " m must be smaller than the pitch " +
+                                          formatNumber(chain.pitch) + " m");
+  readJoint(c.object("joint", true), chain.joint);
+  chain.route = c.strings("route", true);
+  c.finish();
+}
+
+// Sprockets and guides share one set of names: the route refers to both.
+struct ElementNames {
+  std::set<std::string> taken;
+  void claim(Fields& f, const std::string& n) {
+    if (n.empty()) return;
+    if (!taken.insert(n).second) f.problem(f.at("name"), "'" + n + "' is used twice; sprocket and guide names must be unique");
   }
-
-  bool valid() const { return j_ != nullptr; }
-  const std::string& path() const { return path_; }
-  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  bool has(const std::string& key) const { return j_ && j_->contains(key); }
-
-  void problem(const std::string& field, const std::string& what) { problems_.push_back(field + ": " + what); }
-
-  const json* raw(const std::string& key) {
-    seen_.insert(key);
-    if (!j_) return nullptr;
-    auto it = j_->find(key);
-    return it == j_->end() ? nullptr : &*it;
-  }
-
-  /// A number in [lo, hi]. Missing: the default if given, else a problem.
-  double number(const std::string& key, double lo, double hi, std::optional<double> dflt, const char* unit,
-                bool loOpen = false) {
-    const json* v = raw(key);
-    if (!v) {
-      if (!dflt && j_) problem(at(key), std::string("missing; required, ") + rangeText(lo, hi, unit, loOpen));
-      return dflt.value_or(std::nan(""));
-    }
-    if (!v->is_number()) {
-      problem(at(key), "must be a number, got " + typeName(*v));
-      return dflt.value_or(std::nan(""));
-    }
-    const double x = v->get<double>();
-    if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
-      problem(at(key), fmt(x) + " is out of range; allowed " + rangeText(lo, hi, unit, loOpen));
-    }
-    return x;
-  }
-
-  std::optional<double> optionalNumber(const std::string& key, double lo, double hi, const char* unit,
-                                       bool loOpen = false) {
-    if (!has(key)) {
-      seen_.insert(key);
-      return std::nullopt;
-    }
-    return number(key, lo, hi, std::nullopt, unit, loOpen);
-  }
-
-  /// An angle given either as `key` [rad] or as `key_deg` [deg]; returned in rad.
-  double angle(const std::string& key, double loRad, double hiRad, std::optional<double> dfltRad) {
-    const std::string keyDeg = key + "_deg";
-    const bool r = has(key), d = has(keyDeg);
-    seen_.insert(key);
-    seen_.insert(keyDeg);
-    if (r && d) {
-      problem(at(key), "given both as '" + key + "' [rad] and '" + keyDeg + "' [deg]; give one");
-      return std::nan("");
-    }
-    if (d) {
-      const double deg = number(keyDeg, loRad * 180.0 / kPi, hiRad * 180.0 / kPi, std::nullopt, "deg");
-      return deg * kPi / 180.0;
-    }
-    if (r) return number(key, loRad, hiRad, std::nullopt, "rad");
-    if (!dfltRad && j_)
-      problem(at(key), "missing; required (as '" + key + "' in rad or '" + keyDeg + "' in deg)");
-    return dfltRad.value_or(std::nan(""));
-  }
-
-  int integer(const std::string& key, int lo, int hi, std::optional<int> dflt) {
-    const json* v = raw(key);
-    if (!v) {
-      if (!dflt && j_) problem(at(key), "missing; required, an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-      return dflt.value_or(0);
-    }
-    if (!v->is_number_integer()) {
-      problem(at(key), "must be an integer, got " + (v->is_number() ? fmt(v->get<double>()) : typeName(*v)));
-      return dflt.value_or(0);
-    }
-    const long long x = v->get<long long>();
-    if (x < lo || x > hi) {
-      problem(at(key), std::to_string(x) + " is out of range; allowed an integer in " + std::to_string(lo) + ".." +
-                           std::to_string(hi));
-      return dflt.value_or(0);
-    }
-    return static_cast<int>(x);
-  }
-
-  std::string string(const std::string& key, const std::vector<std::string>& allowed, std::optional<std::string> dflt) {
-    const json* v = raw(key);
-    if (!v) {
-      if (!dflt && j_) problem(at(key), "missing; required" + allowedText(allowed));
-      return dflt.value_or("");
-    }
-    if (!v->is_string()) {
-      problem(at(key), "must be a string, got " + typeName(*v));
-      return dflt.value_or("");
-    }
-    std::string s = v->get<std::string>();
-    if (!allowed.empty()) {
-      bool ok = false;
-      for (const auto& a : allowed) ok = ok || a == s;
-      if (!ok) problem(at(key), "'" + s + "' is not allowed" + allowedText(allowed));
-    } else if (s.empty()) {
-      problem(at(key), "must not be empty");
-    }
-    return s;
-  }
-
-  bool boolean(const std::string& key, bool dflt) {
-    const json* v = raw(key);
-    if (!v) return dflt;
-    if (!v->is_boolean()) {
-      problem(at(key), "must be true or false, got " + typeName(*v));
-      return dflt;
-    }
-    return v->get<bool>();
-  }
-
-  Vec2 vec2(const std::string& key, double bound, std::optional<Vec2> dflt, const char* unit) {
-    const json* v = raw(key);
-    if (!v) {
-      if (!dflt && j_) problem(at(key), std::string("missing; required, [x, y] in ") + unit);
-      return dflt.value_or(Vec2{std::nan(""), std::nan("")});
-    }
-    if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number()) {
-      problem(at(key), std::string("must be an array of two numbers [x, y] in ") + unit);
-      return dflt.value_or(Vec2{std::nan(""), std::nan("")});
-    }
-    Vec2 r{(*v)[0].get<double>(), (*v)[1].get<double>()};
-    if (!std::isfinite(r.x) || !std::isfinite(r.y) || std::fabs(r.x) > bound || std::fabs(r.y) > bound)
-      problem(at(key), "[" + fmt(r.x) + ", " + fmt(r.y) + "] is out of range; allowed |x|, |y| <= " + fmt(bound) + " " + unit);
-    return r;
-  }
-
-  std::vector<std::string> strings(const std::string& key, bool required) {
-    std::vector<std::string> out;
-    const json* v = raw(key);
-    if (!v) {
-      if (required && j_) problem(at(key), "missing; required, an array of names");
-      return out;
-    }
-    if (!v->is_array()) {
-      problem(at(key), "must be an array of names, got " + typeName(*v));
-      return out;
-    }
-    for (std::size_t i = 0; i < v->size(); ++i) {
-      if (!(*v)[i].is_string()) {
-        problem(at(key) + "[" + std::to_string(i) + "]", "must be a string");
-        continue;
-      }
-      out.push_back((*v)[i].get<std::string>());
-    }
-    return out;
-  }
-
-  Fields object(const std::string& key, bool required) {
-    const json* v = raw(key);
-    if (!v && required && j_) problem(at(key), "missing; required, an object");
-    return Fields(v, at(key), problems_);
-  }
-
-  /// Array of objects; returns the per-element readers (paths with [i]).
-  std::vector<Fields> objects(const std::string& key, bool required) {
-    std::vector<Fields> out;
-    const json* v = raw(key);
-    if (!v) {
-      if (required && j_) problem(at(key), "missing; required, an array of objects");
-      return out;
-    }
-    if (!v->is_array()) {
-      problem(at(key), "must be an array, got " + typeName(*v));
-      return out;
-    }
-    for (std::size_t i = 0; i < v->size(); ++i) out.emplace_back(&(*v)[i], at(key) + "[" + std::to_string(i) + "]", problems_);
-    return out;
-  }
-
-  /// Reports every key of the object that was never asked for.
-  void finish() {
-    if (!j_) return;
-    for (auto it = j_->begin(); it != j_->end(); ++it) {
-      if (!seen_.count(it.key())) {
-        std::string known;
-        for (const auto& k : seen_) known += (known.empty() ? "" : ", ") + k;
-        problem(at(it.key()), "unknown key; known keys here: " + known);
-      }
-    }
-  }
-
- private:
-  static std::string rangeText(double lo, double hi, const char* unit, bool loOpen) {
-    std::string u = unit && *unit ? std::string(" ") + unit : std::string();
-    if (std::isinf(hi)) return (loOpen ? "> " : ">= ") + fmt(lo) + u;
-    return (loOpen ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]" + u;
-  }
-  static std::string allowedText(const std::vector<std::string>& allowed) {
-    if (allowed.empty()) return "";
-    std::string s = "; allowed: ";
-    for (std::size_t i = 0; i < allowed.size(); ++i) s += (i ? ", " : "") + std::string("'") + allowed[i] + "'";
-    return s;
-  }
-
-  const json* j_;
-  std::string path_;
-  std::vector<std::string>& problems_;
-  std::set<std::string> seen_;
 };
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-ContactLawDesc readContactLaw(Fields f) {
-  ContactLawDesc c;
-  if (!f.valid()) return c;
-  c.model = f.string("model", {"hunt-crossley", "spring-damper"}, std::string("hunt-crossley"));
-  c.stiffness = f.number("stiffness", 0.0, 1e12, std::nullopt, "N/m^exponent", true);
-  c.exponent = f.number("exponent", 1.0, 2.0, 1.0, "");
-  c.dampingFactor = f.number("dampingFactor", 0.0, 100.0, 0.0, "s/m");
-  c.damping = f.number("damping", 0.0, 1e7, 0.0, "N s/m");
-  c.friction = f.number("friction", 0.0, 2.0, 0.0, "");
-  c.restitution = f.number("restitution", 0.0, 1.0, 0.5, "");
-  if (c.model == "hunt-crossley" && f.has("damping"))
-    f.problem(f.at("damping"), "not used by model 'hunt-crossley' (give 'dampingFactor' in s/m)");
-  if (c.model == "spring-damper" && f.has("dampingFactor"))
-    f.problem(f.at("dampingFactor"), "not used by model 'spring-damper' (give 'damping' in N s/m)");
-  f.finish();
-  return c;
+// The ISO 606 tooth form of a sprocket, with optional overrides of its dimensions.
+void readToothProfile(Fields tp, ToothProfileDesc& profile) {
+  if (!tp.valid()) return;
+  tp.string("standard", {"ISO 606"}, std::string("ISO 606"));
+  profile.form = tp.string("form", {"min", "mean", "max"}, std::string("mean"));
+  profile.seatRadius = tp.optionalNumber("seatRadius", 0.0, 0.05, "m", true);
+  if (tp.has("seatAngle") || tp.has("seatAngle_deg"))
+    profile.seatAngle = tp.angle("seatAngle", 60.0 * kPi / 180.0, 170.0 * kPi / 180.0, std::nullopt);
+  else
+    tp.angle("seatAngle", 0.0, 1.0, 0.0);  // mark both spellings as known
+  profile.flankRadius = tp.optionalNumber("flankRadius", 0.0, 10.0, "m", true);
+  profile.tipDiameter = tp.optionalNumber("tipDiameter", 0.0, 10.0, "m", true);
+  tp.finish();
 }
 
+// One sprocket: prescribed sprockets may leave out the inertia (the input drives them).
+SprocketDesc readSprocket(Fields& f, ElementNames& names) {
+  SprocketDesc s;
+  s.name = f.string("name", {}, std::nullopt);
+  names.claim(f, s.name);
+  s.center = f.vec2("center", 10.0, std::nullopt, "m");
+  s.teeth = f.integer("teeth", 6, 200, std::nullopt);
+  const std::string motion = f.string("motion", {"prescribed", "free"}, std::nullopt);
+  s.prescribed = motion == "prescribed";
+  s.inertia = f.number("inertia", 0.0, 1e3, s.prescribed ? std::optional<double>(0.0) : std::nullopt, "kg m^2",
+                       !s.prescribed);
+  readToothProfile(f.object("toothProfile", false), s.toothProfile);
+  f.finish();
+  return s;
+}
+
+// At least two sprockets, at most one of them prescribed (the crankshaft).
+void readSprockets(Fields& top, DriveDescription& desc, ElementNames& names) {
+  auto list = top.objects("sprockets", true);
+  if (top.has("sprockets") && list.size() < 2) top.problem("sprockets", "at least two sprockets are needed");
+  for (auto& f : list)
+    if (f.valid()) desc.sprockets.push_back(readSprocket(f, names));
+  int nPrescribed = 0;
+  for (const auto& s : desc.sprockets) nPrescribed += s.prescribed ? 1 : 0;
+  if (nPrescribed > 1)
+    top.problem("sprockets", std::to_string(nPrescribed) + " sprockets have motion 'prescribed'; at most one may");
+}
+
+// The admissible rotation of a pivoting guide, as angleRange [rad] or angleRange_deg [deg].
+void readAngleRange(Fields& f, GuideDesc& g) {
+  if (!f.has("angleRange") && !f.has("angleRange_deg")) {
+    f.raw("angleRange");
+    f.raw("angleRange_deg");
+    return;
+  }
+  const bool deg = f.has("angleRange_deg");
+  const json* v = f.raw(deg ? "angleRange_deg" : "angleRange");
+  f.raw(deg ? "angleRange" : "angleRange_deg");
+  const double s = deg ? kPi / 180.0 : 1.0;
+  if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+      !((*v)[0].get<double>() < 0.0 && (*v)[1].get<double>() > 0.0 && (*v)[1].get<double>() * s < 1.0 &&
+        (*v)[0].get<double>() * s > -1.0)) {
+    f.problem(f.at(deg ? "angleRange_deg" : "angleRange"),
+              "must be [min, max] with -57.3 deg < min < 0 < max < 57.3 deg (rotation from the drawn pose)");
+  } else {
+    g.angleMin = (*v)[0].get<double>() * s;
+    g.angleMax = (*v)[1].get<double>() * s;
+  }
+}
+
+// The pivot, inertia, weight, friction and admissible rotation of a pivoting guide.
+void readPivot(Fields& f, GuideDesc& g) {
+  g.pivot = f.vec2("pivot", 10.0, std::nullopt, "m");
+  g.inertia = f.number("inertia", 0.0, 1e3, std::nullopt, "kg m^2", true);
+  g.mass = f.number("mass", 0.0, 1e3, 0.0, "kg");
+  g.centerOfMass = f.vec2("centerOfMass", 10.0, g.pivot, "m");
+  g.pivotDamping = f.number("pivotDamping", 0.0, 1e6, 0.0, "N m s/rad");
+  readAngleRange(f, g);
+}
+
+// One element of a guide profile: an arc (angles in rad or deg) or a straight line.
 GuideFeatureDesc readFeature(Fields f) {
   GuideFeatureDesc g;
   const std::string type = f.string("type", {"arc", "line"}, std::nullopt);
@@ -298,6 +180,221 @@ GuideFeatureDesc readFeature(Fields f) {
   }
   f.finish();
   return g;
+}
+
+// One guide: fixed or pivoting, with a profile of at least one arc or line.
+GuideDesc readGuide(Fields& f, ElementNames& names) {
+  GuideDesc g;
+  g.name = f.string("name", {}, std::nullopt);
+  names.claim(f, g.name);
+  const std::string motion = f.string("motion", {"fixed", "pivoting"}, std::nullopt);
+  g.pivoting = motion == "pivoting";
+  if (g.pivoting) readPivot(f, g);
+  for (auto& pf : f.objects("profile", true)) {
+    if (pf.valid()) g.profile.push_back(readFeature(pf));
+  }
+  if (f.has("profile") && g.profile.empty()) f.problem(f.at("profile"), "must contain at least one arc or line");
+  f.finish();
+  return g;
+}
+
+// The guides (optional section).
+void readGuides(Fields& top, DriveDescription& desc, ElementNames& names) {
+  auto list = top.objects("guides", false);
+  for (auto& f : list)
+    if (f.valid()) desc.guides.push_back(readGuide(f, names));
+}
+
+// The tensioner pushes a pivoting guide (named before it, in the guides section).
+void readTensioner(Fields& top, DriveDescription& desc) {
+  Fields f = top.object("tensioner", false);
+  if (!f.valid()) return;
+  TensionerDesc& t = desc.tensioner;
+  t.present = true;
+  t.guide = f.string("guide", {}, std::nullopt);
+  t.housing = f.vec2("housing", 10.0, std::nullopt, "m");
+  t.direction = f.vec2("direction", 1e6, std::nullopt, "(unit vector)");
+  t.contactPoint = f.vec2("contactPoint", 10.0, std::nullopt, "m");
+  t.preload = f.number("preload", 0.0, 1e5, std::nullopt, "N");
+  t.stiffness = f.number("stiffness", 0.0, 1e9, 0.0, "N/m");
+  t.damping = f.number("damping", 0.0, 1e7, 0.0, "N s/m");
+  t.dampingExtension = f.number("dampingExtension", 0.0, 1e7, t.damping, "N s/m");
+  const double n = norm(t.direction);
+  if (std::isfinite(n)) {
+    if (n < 1e-12) f.problem(f.at("direction"), "must not be the zero vector");
+    else t.direction = (1.0 / n) * t.direction;
+  }
+  if (!t.guide.empty()) {
+    const int gi = desc.guideIndex(t.guide);
+    if (gi < 0) f.problem(f.at("guide"), "'" + t.guide + "' is not the name of a guide");
+    else if (!desc.guides[gi].pivoting) f.problem(f.at("guide"), "'" + t.guide + "' is a fixed guide; a tensioner needs a pivoting guide");
+  }
+  f.finish();
+}
+
+// A contact law; a missing optional one keeps the defaults. Damping fields of the other model
+// are errors, so that a value given is never silently ignored.
+ContactLawDesc readContactLaw(Fields f) {
+  ContactLawDesc c;
+  if (!f.valid()) return c;
+  c.model = f.string("model", {"hunt-crossley", "spring-damper"}, std::string("hunt-crossley"));
+  c.stiffness = f.number("stiffness", 0.0, 1e12, std::nullopt, "N/m^exponent", true);
+  c.exponent = f.number("exponent", 1.0, 2.0, 1.0, "");
+  c.dampingFactor = f.number("dampingFactor", 0.0, 100.0, 0.0, "s/m");
+  c.damping = f.number("damping", 0.0, 1e7, 0.0, "N s/m");
+  c.friction = f.number("friction", 0.0, 2.0, 0.0, "");
+  c.restitution = f.number("restitution", 0.0, 1.0, 0.5, "");
+  if (c.model == "hunt-crossley" && f.has("damping"))
+    f.problem(f.at("damping"), "not used by model 'hunt-crossley' (give 'dampingFactor' in s/m)");
+  if (c.model == "spring-damper" && f.has("dampingFactor"))
+    f.problem(f.at("dampingFactor"), "not used by model 'spring-damper' (give 'damping' in N s/m)");
+  f.finish();
+  return c;
+}
+
+// The contact laws; plateGuide is required only when there are guides.
+void readContact(Fields& top, DriveDescription& desc) {
+  Fields f = top.object("contact", true);
+  if (!f.valid()) return;
+  desc.contact.method = f.string("method", {"compliant", "event-driven", "time-stepping"}, std::string("compliant"));
+  desc.contact.frictionRegularization = f.number("frictionRegularization", 1e-6, 10.0, 0.05, "m/s");
+  desc.contact.rollerSprocket = readContactLaw(f.object("rollerSprocket", true));
+  desc.contact.plateGuide = readContactLaw(f.object("plateGuide", !desc.guides.empty()));
+  f.finish();
+}
+
+// A guide-angle closure takes its range from the guide's angle range.
+void readGuideClosure(Fields& f, const DriveDescription& desc, ClosureDesc& c) {
+  c.kind = ClosureDesc::Kind::Guide;
+  const int gi = desc.guideIndex(c.element);
+  if (!c.element.empty() && (gi < 0 || !desc.guides[gi].pivoting))
+    f.problem(f.at("element"), "'" + c.element + "' is not a pivoting guide");
+  else if (gi >= 0) {
+    c.rangeMin = desc.guides[gi].angleMin;
+    c.rangeMax = desc.guides[gi].angleMax;
+  }
+}
+
+// A sprocket-shift closure moves the sprocket along a direction, within [shiftMin, shiftMax].
+void readSprocketClosure(Fields& f, const DriveDescription& desc, ClosureDesc& c) {
+  c.kind = ClosureDesc::Kind::Sprocket;
+  if (!c.element.empty() && desc.sprocketIndex(c.element) < 0)
+    f.problem(f.at("element"), "'" + c.element + "' is not a sprocket");
+  c.direction = f.vec2("direction", 1e6, std::nullopt, "(unit vector)");
+  const double n = norm(c.direction);
+  if (std::isfinite(n) && n > 1e-12) c.direction = (1.0 / n) * c.direction;
+  else f.problem(f.at("direction"), "must be a non-zero vector");
+  c.rangeMin = f.number("shiftMin", -1.0, 0.0, -0.01, "m");
+  c.rangeMax = f.number("shiftMax", 0.0, 1.0, 0.01, "m");
+}
+
+// The element that closes the chain (optional: the tensioner's guide by default, see below).
+void readClosure(Fields& top, DriveDescription& desc) {
+  Fields f = top.object("closure", false);
+  if (!f.valid()) return;
+  ClosureDesc c;
+  const std::string kind = f.string("kind", {"guide-angle", "sprocket-shift"}, std::nullopt);
+  c.element = f.string("element", {}, std::nullopt);
+  if (kind == "guide-angle") readGuideClosure(f, desc, c);
+  else if (kind == "sprocket-shift") readSprocketClosure(f, desc, c);
+  f.finish();
+  desc.closure = c;
+}
+
+// The measured spans and the monitored link (optional section).
+void readMeasurement(Fields& top, DriveDescription& desc) {
+  Fields f = top.object("measurement", false);
+  if (!f.valid()) return;
+  desc.measurement.tightSpan = f.strings("tightSpan", false);
+  desc.measurement.slackSpan = f.strings("slackSpan", false);
+  desc.measurement.monitoredLink = f.integer("monitoredLink", 0, 9999, 0);
+  f.finish();
+}
+
+
+// ---- cross-checks between the sections ----
+
+// Every route element is a sprocket or a guide, named once; every sprocket is wrapped; at least
+// two sprockets are.
+void checkRoute(const DriveDescription& desc, std::vector<std::string>& problems) {
+  std::map<std::string, int> count;
+  for (std::size_t i = 0; i < desc.chain.route.size(); ++i) {
+    const auto& n = desc.chain.route[i];
+    ++count[n];
+    if (desc.sprocketIndex(n) < 0 && desc.guideIndex(n) < 0)
+      problems.push_back("chain.route[" + std::to_string(i) + "]: '" + n + "' is neither a sprocket nor a guide");
+  }
+  for (const auto& [n, k] : count)
+    if (k > 1) problems.push_back("chain.route: '" + n + "' appears " + std::to_string(k) + " times; at most once");
+  for (std::size_t i = 0; i < desc.sprockets.size(); ++i)
+    if (!desc.sprockets[i].name.empty() && !count.count(desc.sprockets[i].name))
+      problems.push_back("sprockets[" + std::to_string(i) + "]: '" + desc.sprockets[i].name +
+                         "' is not in chain.route; every sprocket must be wrapped by the chain");
+  int nSprocketsInRoute = 0;
+  for (const auto& n : desc.chain.route) nSprocketsInRoute += desc.sprocketIndex(n) >= 0 ? 1 : 0;
+  if (nSprocketsInRoute < 2 && !desc.chain.route.empty())
+    problems.push_back("chain.route: needs at least two sprockets");
+}
+
+// A measured span names two elements that follow each other in the route (running order).
+void checkSpan(const std::vector<std::string>& route, const std::vector<std::string>& span, const char* field,
+               std::vector<std::string>& problems) {
+  if (span.empty()) return;
+  bool ok = span.size() == 2;
+  if (ok) {
+    ok = false;
+    for (std::size_t i = 0; i < route.size(); ++i)
+      if (route[i] == span[0] && route[(i + 1) % route.size()] == span[1]) ok = true;
+  }
+  if (!ok)
+    problems.push_back(std::string("measurement.") + field +
+                       ": must name two elements that follow each other in chain.route, in running order");
+}
+
+// The measured spans exist and the monitored link is one of the chain.
+void checkMeasurement(const DriveDescription& desc, std::vector<std::string>& problems) {
+  checkSpan(desc.chain.route, desc.measurement.tightSpan, "tightSpan", problems);
+  checkSpan(desc.chain.route, desc.measurement.slackSpan, "slackSpan", problems);
+  if (desc.chain.numberOfLinks > 0 && desc.measurement.monitoredLink >= desc.chain.numberOfLinks)
+    problems.push_back("measurement.monitoredLink: " + std::to_string(desc.measurement.monitoredLink) +
+                       " is out of range; allowed 0.." + std::to_string(desc.chain.numberOfLinks - 1));
+}
+
+// Without a closure section the tensioner's guide closes the chain; without either it is an
+// error (reported only when nothing else is wrong, since it is often a consequence).
+void defaultClosure(DriveDescription& desc, std::vector<std::string>& problems) {
+  if (desc.closure) return;
+  if (desc.tensioner.present && desc.guideIndex(desc.tensioner.guide) >= 0 &&
+      desc.guides[desc.guideIndex(desc.tensioner.guide)].pivoting) {
+    ClosureDesc c;
+    c.kind = ClosureDesc::Kind::Guide;
+    c.element = desc.tensioner.guide;
+    const auto& g = desc.guides[desc.guideIndex(c.element)];
+    c.rangeMin = g.angleMin;
+    c.rangeMax = g.angleMax;
+    desc.closure = c;
+  } else if (problems.empty()) {
+    problems.push_back("closure: missing; without a tensioner, name the element that closes the chain "
+                       "({\"kind\": \"guide-angle\" | \"sprocket-shift\", \"element\": ...})");
+  }
+}
+
+// A closing guide must be wrapped by the chain, or rotating it would not change the path.
+void checkClosureInRoute(const DriveDescription& desc, std::vector<std::string>& problems) {
+  if (!desc.closure || desc.closure->kind != ClosureDesc::Kind::Guide) return;
+  bool inRoute = false;
+  for (const auto& n : desc.chain.route) inRoute = inRoute || n == desc.closure->element;
+  if (!inRoute && !desc.closure->element.empty())
+    problems.push_back("closure.element: guide '" + desc.closure->element + "' must be in chain.route to close the chain");
+}
+
+// The JSON text (comments allowed); a syntax error is the only problem reported.
+json parseJson(std::string_view text) {
+  try {
+    return json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    throw DescriptionError({std::string("(file): not valid JSON: ") + e.what()});
+  }
 }
 
 }  // namespace
@@ -326,8 +423,8 @@ Iso606ToothForm iso606ToothForm(int z, double pitch, double d1, const std::strin
   const double reMaxGap = 0.12 * d1mm * (dz + 2.0);           // flank radius of the maximum tooth gap form
   const double aMinGap = (140.0 - 90.0 / dz) * kPi / 180.0;  // seating angle, minimum gap form
   const double aMaxGap = (120.0 - 90.0 / dz) * kPi / 180.0;
-  const double d = pmm / std::sin(kPi / dz);
-  const double daMax = d + 1.25 * pmm - d1mm, daMin = d + pmm * (1.0 - 1.6 / dz) - d1mm;
+  const double pitchDiameter = pmm / std::sin(kPi / dz);
+  const double daMax = pitchDiameter + 1.25 * pmm - d1mm, daMin = pitchDiameter + pmm * (1.0 - 1.6 / dz) - d1mm;
   Iso606ToothForm t{};
   if (form == "min") {
     t = {riMin, aMinGap, reMinGap, daMax};
@@ -342,286 +439,35 @@ Iso606ToothForm iso606ToothForm(int z, double pitch, double d1, const std::strin
   return t;
 }
 
+// A table of contents: the JSON, the sections in file order (each reads what it needs of the
+// ones before it), then the checks across sections. Every problem is collected before throwing.
 DriveDescription parseDriveDescription(std::string_view text) {
-  json root;
-  try {
-    root = json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    throw DescriptionError({std::string("(file): not valid JSON: ") + e.what()});
-  }
+  // syntax errors stop here: nothing can be read
+  const json root = parseJson(text);
   std::vector<std::string> problems;
   Fields top(&root, "", problems);
   if (!top.valid()) throw DescriptionError(problems);
 
-  DriveDescription d;
-  top.string("schema", {"chaindrive.drive/1"}, std::string("chaindrive.drive/1"));
-  d.name = top.string("name", {}, std::string("unnamed drive"));
-  top.string("description", {}, std::string(""));
-  const std::string rot = top.string("rotation", {"clockwise", "counterclockwise"}, std::string("clockwise"));
-  d.rotationSense = rot == "clockwise" ? -1.0 : 1.0;
-  d.gravity = top.vec2("gravity", 100.0, Vec2{0.0, -9.81}, "m/s^2");
-
-  // ---- chain ----
-  {
-    Fields c = top.object("chain", true);
-    if (c.valid()) {
-      d.chain.pitch = c.number("pitch", 1e-3, 0.1, std::nullopt, "m");
-      d.chain.numberOfLinks = c.integer("numberOfLinks", 10, 10000, std::nullopt);
-      if (d.chain.numberOfLinks % 2 != 0)
-        c.problem(c.at("numberOfLinks"), std::to_string(d.chain.numberOfLinks) +
-                                             " is odd; a roller chain alternates inner and outer links, so the "
-                                             "number must be even");
-      d.chain.linkMass = c.number("linkMass", 0.0, 10.0, std::nullopt, "kg", true);
-      d.chain.linkInertia = c.number("linkInertia", 0.0, 1.0, std::nullopt, "kg m^2", true);
-      d.chain.rollerDiameter = c.number("rollerDiameter", 1e-4, 0.1, std::nullopt, "m");
-      d.chain.plateHeight = c.number("plateHeight", 1e-4, 0.2, std::nullopt, "m");
-      c.string("standard", {}, std::string(""));
-      if (std::isfinite(d.chain.rollerDiameter) && std::isfinite(d.chain.pitch) && d.chain.rollerDiameter >= d.chain.pitch)
-        c.problem(c.at("rollerDiameter"), fmt(d.chain.rollerDiameter) + " m must be smaller than the pitch " +
-                                              fmt(d.chain.pitch) + " m");
-      Fields jt = c.object("joint", true);
-      if (jt.valid()) {
-        d.chain.joint.model = jt.string("model", {"journal-bearing", "ideal"}, std::string("journal-bearing"));
-        d.chain.joint.stiffness = jt.number("stiffness", 0.0, 1e12, std::nullopt, "N/m", true);
-        d.chain.joint.damping = jt.number("damping", 0.0, 1e6, 0.0, "N s/m");
-        d.chain.joint.clearance = jt.number("clearance", 0.0, 1e-3, 0.0, "m");
-        jt.finish();
-      }
-      d.chain.route = c.strings("route", true);
-      c.finish();
-    }
-  }
-
-  // ---- sprockets ----
-  std::set<std::string> names;
-  auto claimName = [&](Fields& f, const std::string& n) {
-    if (n.empty()) return;
-    if (!names.insert(n).second) f.problem(f.at("name"), "'" + n + "' is used twice; sprocket and guide names must be unique");
-  };
-  {
-    auto list = top.objects("sprockets", true);
-    if (top.has("sprockets") && list.size() < 2) top.problem("sprockets", "at least two sprockets are needed");
-    for (auto& f : list) {
-      if (!f.valid()) continue;
-      SprocketDesc s;
-      s.name = f.string("name", {}, std::nullopt);
-      claimName(f, s.name);
-      s.center = f.vec2("center", 10.0, std::nullopt, "m");
-      s.teeth = f.integer("teeth", 6, 200, std::nullopt);
-      const std::string motion = f.string("motion", {"prescribed", "free"}, std::nullopt);
-      s.prescribed = motion == "prescribed";
-      s.inertia = f.number("inertia", 0.0, 1e3, s.prescribed ? std::optional<double>(0.0) : std::nullopt, "kg m^2",
-                           !s.prescribed);
-      Fields tp = f.object("toothProfile", false);
-      if (tp.valid()) {
-        tp.string("standard", {"ISO 606"}, std::string("ISO 606"));
-        s.toothProfile.form = tp.string("form", {"min", "mean", "max"}, std::string("mean"));
-        s.toothProfile.seatRadius = tp.optionalNumber("seatRadius", 0.0, 0.05, "m", true);
-        if (tp.has("seatAngle") || tp.has("seatAngle_deg"))
-          s.toothProfile.seatAngle = tp.angle("seatAngle", 60.0 * kPi / 180.0, 170.0 * kPi / 180.0, std::nullopt);
-        else
-          tp.angle("seatAngle", 0.0, 1.0, 0.0);  // mark both spellings as known
-        s.toothProfile.flankRadius = tp.optionalNumber("flankRadius", 0.0, 10.0, "m", true);
-        s.toothProfile.tipDiameter = tp.optionalNumber("tipDiameter", 0.0, 10.0, "m", true);
-        tp.finish();
-      }
-      f.finish();
-      d.sprockets.push_back(s);
-    }
-    int nPrescribed = 0;
-    for (const auto& s : d.sprockets) nPrescribed += s.prescribed ? 1 : 0;
-    if (nPrescribed > 1)
-      top.problem("sprockets", std::to_string(nPrescribed) + " sprockets have motion 'prescribed'; at most one may");
-  }
-
-  // ---- guides ----
-  {
-    auto list = top.objects("guides", false);
-    for (auto& f : list) {
-      if (!f.valid()) continue;
-      GuideDesc g;
-      g.name = f.string("name", {}, std::nullopt);
-      claimName(f, g.name);
-      const std::string motion = f.string("motion", {"fixed", "pivoting"}, std::nullopt);
-      g.pivoting = motion == "pivoting";
-      if (g.pivoting) {
-        g.pivot = f.vec2("pivot", 10.0, std::nullopt, "m");
-        g.inertia = f.number("inertia", 0.0, 1e3, std::nullopt, "kg m^2", true);
-        g.mass = f.number("mass", 0.0, 1e3, 0.0, "kg");
-        g.centerOfMass = f.vec2("centerOfMass", 10.0, g.pivot, "m");
-        g.pivotDamping = f.number("pivotDamping", 0.0, 1e6, 0.0, "N m s/rad");
-        if (f.has("angleRange") || f.has("angleRange_deg")) {
-          const bool deg = f.has("angleRange_deg");
-          const json* v = f.raw(deg ? "angleRange_deg" : "angleRange");
-          f.raw(deg ? "angleRange" : "angleRange_deg");
-          const double s = deg ? kPi / 180.0 : 1.0;
-          if (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
-              !((*v)[0].get<double>() < 0.0 && (*v)[1].get<double>() > 0.0 && (*v)[1].get<double>() * s < 1.0 &&
-                (*v)[0].get<double>() * s > -1.0)) {
-            f.problem(f.at(deg ? "angleRange_deg" : "angleRange"),
-                      "must be [min, max] with -57.3 deg < min < 0 < max < 57.3 deg (rotation from the drawn pose)");
-          } else {
-            g.angleMin = (*v)[0].get<double>() * s;
-            g.angleMax = (*v)[1].get<double>() * s;
-          }
-        } else {
-          f.raw("angleRange");
-          f.raw("angleRange_deg");
-        }
-      }
-      for (auto& pf : f.objects("profile", true)) {
-        if (pf.valid()) g.profile.push_back(readFeature(pf));
-      }
-      if (f.has("profile") && g.profile.empty()) f.problem(f.at("profile"), "must contain at least one arc or line");
-      f.finish();
-      d.guides.push_back(g);
-    }
-  }
-
-  // ---- tensioner ----
-  {
-    Fields f = top.object("tensioner", false);
-    if (f.valid()) {
-      TensionerDesc& t = d.tensioner;
-      t.present = true;
-      t.guide = f.string("guide", {}, std::nullopt);
-      t.housing = f.vec2("housing", 10.0, std::nullopt, "m");
-      t.direction = f.vec2("direction", 1e6, std::nullopt, "(unit vector)");
-      t.contactPoint = f.vec2("contactPoint", 10.0, std::nullopt, "m");
-      t.preload = f.number("preload", 0.0, 1e5, std::nullopt, "N");
-      t.stiffness = f.number("stiffness", 0.0, 1e9, 0.0, "N/m");
-      t.damping = f.number("damping", 0.0, 1e7, 0.0, "N s/m");
-      t.dampingExtension = f.number("dampingExtension", 0.0, 1e7, t.damping, "N s/m");
-      const double n = norm(t.direction);
-      if (std::isfinite(n)) {
-        if (n < 1e-12) f.problem(f.at("direction"), "must not be the zero vector");
-        else t.direction = (1.0 / n) * t.direction;
-      }
-      if (!t.guide.empty()) {
-        const int gi = d.guideIndex(t.guide);
-        if (gi < 0) f.problem(f.at("guide"), "'" + t.guide + "' is not the name of a guide");
-        else if (!d.guides[gi].pivoting) f.problem(f.at("guide"), "'" + t.guide + "' is a fixed guide; a tensioner needs a pivoting guide");
-      }
-      f.finish();
-    }
-  }
-
-  // ---- contact ----
-  {
-    Fields f = top.object("contact", true);
-    if (f.valid()) {
-      d.contact.method = f.string("method", {"compliant", "event-driven", "time-stepping"}, std::string("compliant"));
-      d.contact.frictionRegularization = f.number("frictionRegularization", 1e-6, 10.0, 0.05, "m/s");
-      d.contact.rollerSprocket = readContactLaw(f.object("rollerSprocket", true));
-      d.contact.plateGuide = readContactLaw(f.object("plateGuide", !d.guides.empty()));
-      f.finish();
-    }
-  }
-
-  // ---- closure ----
-  {
-    Fields f = top.object("closure", false);
-    if (f.valid()) {
-      ClosureDesc c;
-      const std::string kind = f.string("kind", {"guide-angle", "sprocket-shift"}, std::nullopt);
-      c.element = f.string("element", {}, std::nullopt);
-      if (kind == "guide-angle") {
-        c.kind = ClosureDesc::Kind::Guide;
-        const int gi = d.guideIndex(c.element);
-        if (!c.element.empty() && (gi < 0 || !d.guides[gi].pivoting))
-          f.problem(f.at("element"), "'" + c.element + "' is not a pivoting guide");
-        else if (gi >= 0) {
-          c.rangeMin = d.guides[gi].angleMin;
-          c.rangeMax = d.guides[gi].angleMax;
-        }
-      } else if (kind == "sprocket-shift") {
-        c.kind = ClosureDesc::Kind::Sprocket;
-        if (!c.element.empty() && d.sprocketIndex(c.element) < 0)
-          f.problem(f.at("element"), "'" + c.element + "' is not a sprocket");
-        c.direction = f.vec2("direction", 1e6, std::nullopt, "(unit vector)");
-        const double n = norm(c.direction);
-        if (std::isfinite(n) && n > 1e-12) c.direction = (1.0 / n) * c.direction;
-        else f.problem(f.at("direction"), "must be a non-zero vector");
-        c.rangeMin = f.number("shiftMin", -1.0, 0.0, -0.01, "m");
-        c.rangeMax = f.number("shiftMax", 0.0, 1.0, 0.01, "m");
-      }
-      f.finish();
-      d.closure = c;
-    }
-  }
-
-  // ---- measurement ----
-  {
-    Fields f = top.object("measurement", false);
-    if (f.valid()) {
-      d.measurement.tightSpan = f.strings("tightSpan", false);
-      d.measurement.slackSpan = f.strings("slackSpan", false);
-      d.measurement.monitoredLink = f.integer("monitoredLink", 0, 9999, 0);
-      f.finish();
-    }
-  }
+  // the sections, in the order their problems are reported
+  DriveDescription desc;
+  readHeader(top, desc);
+  readChain(top, desc);
+  ElementNames names;
+  readSprockets(top, desc, names);
+  readGuides(top, desc, names);
+  readTensioner(top, desc);
+  readContact(top, desc);
+  readClosure(top, desc);
+  readMeasurement(top, desc);
   top.finish();
 
-  // ---- cross references ----
-  if (!d.chain.route.empty() || top.has("chain")) {
-    std::map<std::string, int> count;
-    for (std::size_t i = 0; i < d.chain.route.size(); ++i) {
-      const auto& n = d.chain.route[i];
-      ++count[n];
-      if (d.sprocketIndex(n) < 0 && d.guideIndex(n) < 0)
-        problems.push_back("chain.route[" + std::to_string(i) + "]: '" + n + "' is neither a sprocket nor a guide");
-    }
-    for (const auto& [n, k] : count)
-      if (k > 1) problems.push_back("chain.route: '" + n + "' appears " + std::to_string(k) + " times; at most once");
-    for (std::size_t i = 0; i < d.sprockets.size(); ++i)
-      if (!d.sprockets[i].name.empty() && !count.count(d.sprockets[i].name))
-        problems.push_back("sprockets[" + std::to_string(i) + "]: '" + d.sprockets[i].name +
-                           "' is not in chain.route; every sprocket must be wrapped by the chain");
-    int nSprocketsInRoute = 0;
-    for (const auto& n : d.chain.route) nSprocketsInRoute += d.sprocketIndex(n) >= 0 ? 1 : 0;
-    if (nSprocketsInRoute < 2 && !d.chain.route.empty())
-      problems.push_back("chain.route: needs at least two sprockets");
-  }
-  auto checkSpan = [&](const std::vector<std::string>& span, const char* field) {
-    if (span.empty()) return;
-    const auto& r = d.chain.route;
-    bool ok = span.size() == 2;
-    if (ok) {
-      ok = false;
-      for (std::size_t i = 0; i < r.size(); ++i)
-        if (r[i] == span[0] && r[(i + 1) % r.size()] == span[1]) ok = true;
-    }
-    if (!ok)
-      problems.push_back(std::string("measurement.") + field +
-                         ": must name two elements that follow each other in chain.route, in running order");
-  };
-  checkSpan(d.measurement.tightSpan, "tightSpan");
-  checkSpan(d.measurement.slackSpan, "slackSpan");
-  if (d.chain.numberOfLinks > 0 && d.measurement.monitoredLink >= d.chain.numberOfLinks)
-    problems.push_back("measurement.monitoredLink: " + std::to_string(d.measurement.monitoredLink) +
-                       " is out of range; allowed 0.." + std::to_string(d.chain.numberOfLinks - 1));
-  if (!d.closure) {
-    if (d.tensioner.present && d.guideIndex(d.tensioner.guide) >= 0 && d.guides[d.guideIndex(d.tensioner.guide)].pivoting) {
-      ClosureDesc c;
-      c.kind = ClosureDesc::Kind::Guide;
-      c.element = d.tensioner.guide;
-      const auto& g = d.guides[d.guideIndex(c.element)];
-      c.rangeMin = g.angleMin;
-      c.rangeMax = g.angleMax;
-      d.closure = c;
-    } else if (problems.empty()) {
-      problems.push_back("closure: missing; without a tensioner, name the element that closes the chain "
-                         "({\"kind\": \"guide-angle\" | \"sprocket-shift\", \"element\": ...})");
-    }
-  }
-  if (d.closure && d.closure->kind == ClosureDesc::Kind::Guide) {
-    bool inRoute = false;
-    for (const auto& n : d.chain.route) inRoute = inRoute || n == d.closure->element;
-    if (!inRoute && !d.closure->element.empty())
-      problems.push_back("closure.element: guide '" + d.closure->element + "' must be in chain.route to close the chain");
-  }
+  // cross-checks: names in the route and spans, the monitored link, the closing element
+  if (!desc.chain.route.empty() || top.has("chain")) checkRoute(desc, problems);
+  checkMeasurement(desc, problems);
+  defaultClosure(desc, problems);
+  checkClosureInRoute(desc, problems);
   if (!problems.empty()) throw DescriptionError(problems);
-  return d;
+  return desc;
 }
 
 DriveDescription loadDriveDescription(const std::string& path) {

@@ -1,0 +1,69 @@
+// The field reader of the drive description: reads the fields of one JSON object with their
+// types and allowed ranges, and collects every problem with its full field path (so that all
+// errors of a file are reported at once). Every field asked for is remembered, so that finish()
+// can report the keys nobody asked for.
+#pragma once
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vec2.h"
+
+namespace chaindrive {
+
+/// A number as the problems print it (6 significant digits).
+std::string formatNumber(double v);
+
+class Fields {
+ public:
+  using json = nlohmann::json;
+
+  /// Reader of *j at `path` ("" for the root); j == nullptr: a missing optional object (reads
+  /// give the defaults and report nothing). A non-object is a problem.
+  Fields(const json* j, std::string path, std::vector<std::string>& problems);
+
+  bool valid() const { return j_ != nullptr; }
+  const std::string& path() const { return path_; }
+  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) const { return j_ && j_->contains(key); }
+  void problem(const std::string& field, const std::string& what) { problems_.push_back(field + ": " + what); }
+
+  /// The raw value of `key` (nullptr if absent); marks the key as known.
+  const json* raw(const std::string& key);
+
+  /// A number in [lo, hi]. Missing: the default if given, else a problem.
+  double number(const std::string& key, double lo, double hi, std::optional<double> dflt, const char* unit,
+                bool loOpen = false);
+  std::optional<double> optionalNumber(const std::string& key, double lo, double hi, const char* unit,
+                                       bool loOpen = false);
+  /// An angle given either as `key` [rad] or as `key_deg` [deg]; returned in rad.
+  double angle(const std::string& key, double loRad, double hiRad, std::optional<double> dfltRad);
+  int integer(const std::string& key, int lo, int hi, std::optional<int> dflt);
+  /// A string out of `allowed` (any non-empty string when `allowed` is empty).
+  std::string string(const std::string& key, const std::vector<std::string>& allowed, std::optional<std::string> dflt);
+  bool boolean(const std::string& key, bool dflt);
+  Vec2 vec2(const std::string& key, double bound, std::optional<Vec2> dflt, const char* unit);
+  std::vector<std::string> strings(const std::string& key, bool required);
+  Fields object(const std::string& key, bool required);
+  /// Array of objects; returns the per-element readers (paths with [i]).
+  std::vector<Fields> objects(const std::string& key, bool required);
+
+  /// Reports every key of the object that was never asked for.
+  void finish();
+
+ private:
+  const json* array(const std::string& key, bool required, const char* missingWhat, const char* wrongTypeWhat);
+  static std::string rangeText(double lo, double hi, const char* unit, bool loOpen);
+  static std::string allowedText(const std::vector<std::string>& allowed);
+
+  const json* j_;
+  std::string path_;
+  std::vector<std::string>& problems_;
+  std::set<std::string> seen_;
+};
+
+}  // namespace chaindrive
