@@ -1,11 +1,15 @@
 // The FMI 2.0 C interface of ChainDrive.fmu: pure protocol. Every entry checks the instance and
 // the allowed states, catches every exception (none crosses the C boundary) and forwards to
-// Instance. Unsupported functions exist (importers resolve all of them) and return fmi2Error.
+// Instance and its model adapter. Unsupported functions exist (importers resolve all of them) and
+// return fmi2Error.
 #include <cstring>
 #include <new>
+#include <string>
 
 #include "fmi2Functions.h"
+#include "fmu_state.h"
 #include "instance.h"
+#include "variables.h"
 
 using chaindrive::fmu::Instance;
 using chaindrive::fmu::Snapshot;
@@ -14,8 +18,7 @@ namespace fmu = chaindrive::fmu;
 namespace {
 
 // allowed states per function (FMI 2.0 co-simulation state machine)
-constexpr unsigned kAny = fmu::kInstantiated | fmu::kInitializationMode | fmu::kStepComplete | fmu::kStepFailed |
-                          fmu::kTerminated | fmu::kError;
+constexpr unsigned kAny = fmu::kAllStates;
 constexpr unsigned kMaskSetDebugLogging = kAny;
 constexpr unsigned kMaskSetupExperiment = fmu::kInstantiated;
 constexpr unsigned kMaskEnterInit = fmu::kInstantiated;
@@ -61,7 +64,8 @@ bool nullArg(Instance& in, const char* fn, const char* arg, const void* p, size_
 
 fmi2Status unsupported(fmi2Component c, const char* fn) {
   Instance* in = cast(c);
-  if (in) in->log(fmi2Error, "logStatusError", "%s is not supported by ChainDrive (co-simulation only)", fn);
+  if (in)
+    in->log(fmi2Error, "logStatusError", "%s is not supported by %s (co-simulation only)", fn, fmu::kModelIdentifier);
   return fmi2Error;
 }
 
@@ -91,7 +95,11 @@ FMI2_Export fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
   };
   try {
     if (!instanceName || !*instanceName) return fail("instanceName must be a non-empty string");
-    if (fmuType != fmi2CoSimulation) return fail("ChainDrive supports co-simulation only (fmuType must be fmi2CoSimulation)");
+    if (fmuType != fmi2CoSimulation) {
+      const std::string coSimulationOnly = std::string(fmu::kModelIdentifier) +
+                                           " supports co-simulation only (fmuType must be fmi2CoSimulation)";
+      return fail(coSimulationOnly.c_str());
+    }
     if (!fmuGUID || std::strcmp(fmuGUID, fmu::kGuid) != 0)
       return fail("the GUID does not match this binary's modelDescription.xml (wrong or mixed-up FMU files)");
     return new Instance(instanceName, functions, fmuResourceLocation, loggingOn != fmi2False);
@@ -137,14 +145,14 @@ FMI2_Export fmi2Status fmi2Reset(fmi2Component c) {
   FMI2_Export fmi2Status Fn(fmi2Component c, const fmi2ValueReference vr[], size_t n, T value[]) { \
     return guarded(c, #Fn, kMaskGet, [&](Instance& in) {                                           \
       if (nullArg(in, #Fn, "vr", vr, n) || nullArg(in, #Fn, "value", value, n)) return fmi2Error;  \
-      return in.method(vr, n, value);                                                              \
+      return in.model().method(vr, n, value);                                                      \
     });                                                                                            \
   }
 #define CHAINDRIVE_SETTER(Fn, T, method, mask)                                                           \
   FMI2_Export fmi2Status Fn(fmi2Component c, const fmi2ValueReference vr[], size_t n, const T value[]) { \
     return guarded(c, #Fn, mask, [&](Instance& in) {                                                     \
       if (nullArg(in, #Fn, "vr", vr, n) || nullArg(in, #Fn, "value", value, n)) return fmi2Error;        \
-      return in.method(vr, n, value);                                                                    \
+      return in.model().method(vr, n, value);                                                            \
     });                                                                                                  \
   }
 
@@ -189,7 +197,7 @@ FMI2_Export fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate 
     if (nullArg(in, "fmi2SerializedFMUstateSize", "FMUstate", state, 1) ||
         nullArg(in, "fmi2SerializedFMUstateSize", "size", size, 1))
       return fmi2Error;
-    *size = Instance::serialize(*static_cast<const Snapshot*>(state)).size();
+    *size = fmu::serialize(*static_cast<const Snapshot*>(state)).size();
     return fmi2OK;
   });
 }
@@ -198,7 +206,7 @@ FMI2_Export fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state
   return guarded(c, "fmi2SerializeFMUstate", kMaskState, [&](Instance& in) {
     if (nullArg(in, "fmi2SerializeFMUstate", "FMUstate", state, 1) || nullArg(in, "fmi2SerializeFMUstate", "bytes", bytes, 1))
       return fmi2Error;
-    const std::vector<char> b = Instance::serialize(*static_cast<const Snapshot*>(state));
+    const std::vector<char> b = fmu::serialize(*static_cast<const Snapshot*>(state));
     if (b.size() != size) {
       in.log(fmi2Error, "logStatusError", "fmi2SerializeFMUstate: buffer of %zu bytes, the state needs %zu", size, b.size());
       return fmi2Error;
@@ -213,7 +221,7 @@ FMI2_Export fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b
   return guarded(c, "fmi2DeSerializeFMUstate", kMaskState, [&](Instance& in) {
     if (nullArg(in, "fmi2DeSerializeFMUstate", "FMUstate", state, 1)) return fmi2Error;
     Snapshot s;
-    const fmi2Status st = in.deserialize(bytes, size, s);
+    const fmi2Status st = fmu::deserialize(in, bytes, size, s);
     if (st != fmi2OK) return st;
     if (*state) *static_cast<Snapshot*>(*state) = std::move(s);
     else *state = new Snapshot(std::move(s));

@@ -1,134 +1,170 @@
 // chaindrive-info: assembles a drive and prints the assembly report; optionally writes the
 // geometry (sprocket outlines, guide faces, chain path, pins) as JSON for plots.
 #include <cstdio>
-#include <cstring>
 #include <fstream>
-#include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "cli/arguments.h"
 #include "description/drive_description.h"
 #include "assembly/model.h"
 
 using namespace chaindrive;
 
-static void usage() {
+namespace {
+
+constexpr const char* kTool = "chaindrive-info";
+
+void usage() {
   std::puts(
       "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--quiet]\n"
       "  Assembles the drive (default: the embedded default drive), prints the closure and pose\n"
       "  report, and optionally writes the geometry for plotting.");
 }
 
-int main(int argc, char** argv) {
+struct InfoArguments {
   std::string drive, geometry;
   bool quiet = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--drive" && i + 1 < argc) drive = argv[++i];
-    else if (a == "--geometry" && i + 1 < argc) geometry = argv[++i];
-    else if (a == "--quiet") quiet = true;
-    else if (a == "-h" || a == "--help") { usage(); return 0; }
-    else { std::fprintf(stderr, "chaindrive-info: unknown argument '%s'\n", a.c_str()); usage(); return 2; }
+};
+
+// The options in any order (an option without its value is an unknown argument); -h/--help ends
+// the reading. Throws std::invalid_argument for an unknown argument.
+InfoArguments parseArguments(cli::Arguments& args) {
+  InfoArguments r;
+  while (args.next()) {
+    const std::string& a = args.current();
+    if (a == "--drive" && args.hasValue()) r.drive = args.value();
+    else if (a == "--geometry" && args.hasValue()) r.geometry = args.value();
+    else if (a == "--quiet") r.quiet = true;
+    else throw std::invalid_argument("unknown argument '" + a + "'");
   }
-  try {
-    const DriveDescription d = drive.empty() ? defaultDriveDescription() : loadDriveDescription(drive);
-    const Model m = assemble(d);
-    if (!quiet) {
-      std::printf("drive: %s\n", m.name.c_str());
-      std::printf("links: %d, pitch %.4f mm, path length %.6f mm (n*p = %.6f mm)\n", m.chain.links, m.chain.pitch * 1e3,
-                  m.assembly.pathLength * 1e3, m.chain.links * m.chain.pitch * 1e3);
-      std::printf("closure: %s = %.9g %s, closing-joint gap %.3e m, max joint gap %.3e m\n",
-                  m.assembly.closureElement.c_str(), m.assembly.closureValue,
-                  m.description.closure->kind == ClosureDesc::Kind::Guide ? "rad" : "m", m.assembly.closureResidual,
-                  m.assembly.maxJointGap);
-      for (const auto& note : m.assembly.notes) std::printf("note: %s\n", note.c_str());
-      for (const auto& s : m.sprockets)
-        std::printf("sprocket %-16s z=%3d  pitch R %.4f mm  tip R %.4f mm  seat r %.4f mm  flank r %.3f mm  seat angle %.2f deg\n",
-                    s.name.c_str(), s.gap.teeth, s.gap.pitchRadius * 1e3, s.gap.tipRadius * 1e3, s.gap.seatRadius * 1e3,
-                    s.gap.flankRadius * 1e3, s.gap.seatAngle * 180.0 / kPi);
-      int onS = 0, onG = 0, onF = 0;
-      for (const auto& p : m.pins) (p.on == PinNominal::On::Sprocket ? onS : p.on == PinNominal::On::Guide ? onG : onF)++;
-      std::printf("pins: %d on sprockets, %d on guides, %d in free spans\n", onS, onG, onF);
-      std::printf("states: %d\n", m.nStates);
+  return r;
+}
+
+// ---- the report ----
+
+// The closure, the sprockets and where the pins lie.
+void printReport(const Model& m) {
+  std::printf("drive: %s\n", m.name.c_str());
+  std::printf("links: %d, pitch %.4f mm, path length %.6f mm (n*p = %.6f mm)\n", m.chain.links, m.chain.pitch * 1e3,
+              m.assembly.pathLength * 1e3, m.chain.links * m.chain.pitch * 1e3);
+  std::printf("closure: %s = %.9g %s, closing-joint gap %.3e m, max joint gap %.3e m\n",
+              m.assembly.closureElement.c_str(), m.assembly.closureValue,
+              m.description.closure->kind == ClosureDesc::Kind::Guide ? "rad" : "m", m.assembly.closureResidual,
+              m.assembly.maxJointGap);
+  for (const auto& note : m.assembly.notes) std::printf("note: %s\n", note.c_str());
+  for (const auto& s : m.sprockets)
+    std::printf("sprocket %-16s z=%3d  pitch R %.4f mm  tip R %.4f mm  seat r %.4f mm  flank r %.3f mm  seat angle %.2f deg\n",
+                s.name.c_str(), s.gap.teeth, s.gap.pitchRadius * 1e3, s.gap.tipRadius * 1e3, s.gap.seatRadius * 1e3,
+                s.gap.flankRadius * 1e3, s.gap.seatAngle * 180.0 / kPi);
+  int onS = 0, onG = 0, onF = 0;
+  for (const auto& p : m.pins) (p.on == PinNominal::On::Sprocket ? onS : p.on == PinNominal::On::Guide ? onG : onF)++;
+  std::printf("pins: %d on sprockets, %d on guides, %d in free spans\n", onS, onG, onF);
+  std::printf("states: %d\n", m.nStates);
+}
+
+// ---- the geometry (all in the drawn pose: rotors at their initial angles) ----
+
+void addSprockets(const Model& m, nlohmann::json& g) {
+  for (const auto& s : m.sprockets) {
+    nlohmann::json js;
+    js["name"] = s.name;
+    js["center"] = {s.center.x, s.center.y};
+    js["pitchRadius"] = s.gap.pitchRadius;
+    js["tipRadius"] = s.gap.tipRadius;
+    const double a0 = m.rotors[s.rotor].initialAngle;
+    for (const auto& p : s.gap.outline(6)) {
+      const Vec2 q = s.center + rotate(p, a0);
+      js["outline"].push_back({q.x, q.y});
     }
-    if (!geometry.empty()) {
-      nlohmann::json g;
-      g["name"] = m.name;
-      g["pitch"] = m.chain.pitch;
-      g["rollerRadius"] = m.chain.rollerRadius;
-      g["plateHalfHeight"] = m.chain.plateHalfHeight;
-      for (const auto& s : m.sprockets) {
-        nlohmann::json js;
-        js["name"] = s.name;
-        js["center"] = {s.center.x, s.center.y};
-        js["pitchRadius"] = s.gap.pitchRadius;
-        js["tipRadius"] = s.gap.tipRadius;
-        const double a0 = m.rotors[s.rotor].initialAngle;
-        for (const auto& p : s.gap.outline(6)) {
-          const Vec2 q = s.center + rotate(p, a0);
-          js["outline"].push_back({q.x, q.y});
-        }
-        g["sprockets"].push_back(js);
-      }
-      for (const auto& gm : m.guides) {
-        nlohmann::json jg;
-        jg["name"] = gm.name;
-        jg["pivot"] = {gm.pivot.x, gm.pivot.y};
-        jg["pivoting"] = gm.rotor >= 0;
-        const double a = gm.rotor >= 0 ? m.rotors[gm.rotor].initialAngle : 0.0;
-        for (const auto& f : gm.faces) {
-          nlohmann::json pts;
-          if (f.type == GuideFace::Type::Line) {
-            for (Vec2 p : {f.from, f.to}) {
-              const Vec2 q = gm.pivot + rotate(p - gm.pivot, a);
-              pts.push_back({q.x, q.y});
-            }
-          } else {
-            double a0 = angleOf(f.arc.dir0), a1 = angleOf(f.arc.dir1);
-            while (a1 < a0) a1 += 2.0 * kPi;
-            for (int k = 0; k <= 40; ++k) {
-              const Vec2 p = f.arc.center + f.arc.radius * unit(a0 + (a1 - a0) * k / 40.0);
-              const Vec2 q = gm.pivot + rotate(p - gm.pivot, a);
-              pts.push_back({q.x, q.y});
-            }
-          }
-          jg["faces"].push_back(pts);
-        }
-        g["guides"].push_back(jg);
-      }
-      if (m.tensioner.present) {
-        const int r = m.tensioner.rotor;
-        const Vec2 pad = m.rotors[r].axis + rotate(m.tensioner.pad - m.rotors[r].axis, m.rotors[r].initialAngle);
-        g["tensioner"] = {{"housing", {m.tensioner.housing.x, m.tensioner.housing.y}},
-                          {"pad", {pad.x, pad.y}},
-                          {"direction", {m.tensioner.direction.x, m.tensioner.direction.y}}};
-      }
-      for (const auto& p : m.pins) g["pins"].push_back({p.position.x, p.position.y});
-      for (const auto& seg : m.path.segments()) {
-        const std::string& from = m.description.chain.route[seg.routeIndex];
-        const std::string& to = m.description.chain.route[(seg.routeIndex + 1) % m.description.chain.route.size()];
-        g["segments"].push_back({{"kind", seg.isArc ? "wrap" : "span"},
-                                 {"element", seg.isArc ? from : from + " -> " + to},
-                                 {"start", seg.start},
-                                 {"length", seg.length}});
-      }
-      g["pathLength"] = m.path.length();
-      for (int k = 0; k <= 2000; ++k) {
-        const Vec2 q = m.path.point(m.path.length() * k / 2000.0);
-        g["path"].push_back({q.x, q.y});
-      }
-      for (const auto* sp : {&m.tightSpan, &m.slackSpan})
-        g["probes"].push_back(sp->present ? nlohmann::json{sp->point.x, sp->point.y} : nlohmann::json());
-      g["closure"] = {{"element", m.assembly.closureElement}, {"value", m.assembly.closureValue}};
-      std::ofstream(geometry) << g.dump(1) << "\n";
-    }
-  } catch (const DescriptionError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "chaindrive-info: %s\n", e.what());
-    return 1;
+    g["sprockets"].push_back(js);
   }
+}
+
+// A guide face as points: the two ends of a line, 41 points along an arc; turned by the guide's angle a.
+nlohmann::json facePoints(const GuideFace& f, Vec2 pivot, double a) {
+  nlohmann::json pts;
+  if (f.type == GuideFace::Type::Line) {
+    for (Vec2 p : {f.from, f.to}) {
+      const Vec2 q = pivot + rotate(p - pivot, a);
+      pts.push_back({q.x, q.y});
+    }
+  } else {
+    double a0 = angleOf(f.arc.dir0), a1 = angleOf(f.arc.dir1);
+    while (a1 < a0) a1 += 2.0 * kPi;
+    for (int k = 0; k <= 40; ++k) {
+      const Vec2 p = f.arc.center + f.arc.radius * unit(a0 + (a1 - a0) * k / 40.0);
+      const Vec2 q = pivot + rotate(p - pivot, a);
+      pts.push_back({q.x, q.y});
+    }
+  }
+  return pts;
+}
+
+void addGuides(const Model& m, nlohmann::json& g) {
+  for (const auto& gm : m.guides) {
+    nlohmann::json jg;
+    jg["name"] = gm.name;
+    jg["pivot"] = {gm.pivot.x, gm.pivot.y};
+    jg["pivoting"] = gm.rotor >= 0;
+    const double a = gm.rotor >= 0 ? m.rotors[gm.rotor].initialAngle : 0.0;
+    for (const auto& f : gm.faces) jg["faces"].push_back(facePoints(f, gm.pivot, a));
+    g["guides"].push_back(jg);
+  }
+}
+
+// The chain path: its segments (wraps and spans), 2001 points along it, the span force probes.
+void addChainPath(const Model& m, nlohmann::json& g) {
+  for (const auto& p : m.pins) g["pins"].push_back({p.position.x, p.position.y});
+  for (const auto& seg : m.path.segments()) {
+    const std::string& from = m.description.chain.route[seg.routeIndex];
+    const std::string& to = m.description.chain.route[(seg.routeIndex + 1) % m.description.chain.route.size()];
+    g["segments"].push_back({{"kind", seg.isArc ? "wrap" : "span"},
+                             {"element", seg.isArc ? from : from + " -> " + to},
+                             {"start", seg.start},
+                             {"length", seg.length}});
+  }
+  g["pathLength"] = m.path.length();
+  for (int k = 0; k <= 2000; ++k) {
+    const Vec2 q = m.path.point(m.path.length() * k / 2000.0);
+    g["path"].push_back({q.x, q.y});
+  }
+  for (const auto* sp : {&m.tightSpan, &m.slackSpan})
+    g["probes"].push_back(sp->present ? nlohmann::json{sp->point.x, sp->point.y} : nlohmann::json());
+}
+
+void writeGeometry(const Model& m, const std::string& path) {
+  nlohmann::json g;
+  g["name"] = m.name;
+  g["pitch"] = m.chain.pitch;
+  g["rollerRadius"] = m.chain.rollerRadius;
+  g["plateHalfHeight"] = m.chain.plateHalfHeight;
+  addSprockets(m, g);
+  addGuides(m, g);
+  if (m.tensioner.present) {
+    const int r = m.tensioner.rotor;
+    const Vec2 pad = m.rotors[r].axis + rotate(m.tensioner.pad - m.rotors[r].axis, m.rotors[r].initialAngle);
+    g["tensioner"] = {{"housing", {m.tensioner.housing.x, m.tensioner.housing.y}},
+                      {"pad", {pad.x, pad.y}},
+                      {"direction", {m.tensioner.direction.x, m.tensioner.direction.y}}};
+  }
+  addChainPath(m, g);
+  g["closure"] = {{"element", m.assembly.closureElement}, {"value", m.assembly.closureValue}};
+  std::ofstream(path) << g.dump(1) << "\n";
+}
+
+int run(const InfoArguments& r) {
+  const DriveDescription desc = cli::loadDrive(r.drive);
+  const Model m = assemble(desc);
+  if (!r.quiet) printReport(m);
+  if (!r.geometry.empty()) writeGeometry(m, r.geometry);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::runTool(kTool, argc, argv, usage, parseArguments, run);
 }

@@ -10,15 +10,22 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
-#include <vector>
 #include <limits>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "cli/arguments.h"
 #include "lcp/lemke.h"
 
 using namespace chaindrive::lcp;
+namespace cli = chaindrive::cli;
 
-static void usage(std::FILE* out) {
+namespace {
+
+constexpr const char* kTool = "chaindrive-lcp";
+
+void usage(std::FILE* out) {
   std::fputs(
       "usage: chaindrive-lcp FILE [--max-pivots N] [--fc2d] [--repeat N]\n"
       "  Solves the LCP w = M z + q >= 0, z >= 0, w'z = 0 read from FILE (Siconos dense format)\n"
@@ -33,7 +40,7 @@ static void usage(std::FILE* out) {
       out);
 }
 
-static bool parseInt(const std::string& s, int& v) {
+bool parseInt(const std::string& s, int& v) {
   if (s.empty()) return false;
   std::size_t used = 0;
   try {
@@ -46,99 +53,124 @@ static bool parseInt(const std::string& s, int& v) {
   return true;
 }
 
-int main(int argc, char** argv) {
+struct LcpArguments {
   std::string file;
   int maxPivots = -1;
   bool fc2d = false;
   int repeat = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      usage(stdout);
-      return 0;
-    } else if (a == "--fc2d") {
-      fc2d = true;
+};
+
+// One problem file and the options in any order; -h/--help ends the reading. Throws
+// std::invalid_argument for a bad argument.
+LcpArguments parseArguments(cli::Arguments& args) {
+  LcpArguments r;
+  while (args.next()) {
+    const std::string& a = args.current();
+    if (a == "--fc2d") {
+      r.fc2d = true;
     } else if (a == "--max-pivots") {
-      if (i + 1 >= argc || !parseInt(argv[i + 1], maxPivots)) {
-        std::fprintf(stderr, "chaindrive-lcp: --max-pivots needs a non-negative integer\n");
-        usage(stderr);
-        return 2;
-      }
-      ++i;
+      if (!args.hasValue() || !parseInt(args.value(), r.maxPivots))
+        throw std::invalid_argument("--max-pivots needs a non-negative integer");
     } else if (a == "--repeat") {
-      if (i + 1 >= argc || !parseInt(argv[i + 1], repeat) || repeat < 1) {
-        std::fprintf(stderr, "chaindrive-lcp: --repeat needs a positive integer\n");
-        usage(stderr);
-        return 2;
-      }
-      ++i;
+      if (!args.hasValue() || !parseInt(args.value(), r.repeat) || r.repeat < 1)
+        throw std::invalid_argument("--repeat needs a positive integer");
     } else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "chaindrive-lcp: unknown argument '%s'\n", a.c_str());
-      usage(stderr);
-      return 2;
-    } else if (file.empty()) {
-      file = a;
+      throw std::invalid_argument("unknown argument '" + a + "'");
+    } else if (r.file.empty()) {
+      r.file = a;
     } else {
-      std::fprintf(stderr, "chaindrive-lcp: more than one file given ('%s', '%s')\n", file.c_str(), a.c_str());
-      usage(stderr);
-      return 2;
+      throw std::invalid_argument("more than one file given ('" + r.file + "', '" + a + "')");
     }
   }
-  if (file.empty()) {
-    std::fprintf(stderr, "chaindrive-lcp: no problem file given\n");
-    usage(stderr);
-    return 2;
-  }
+  if (!args.help() && r.file.empty()) throw std::invalid_argument("no problem file given");
+  return r;
+}
 
+// The problem in its LCP form (M, q); an fc2d problem keeps its friction form for the forces.
+struct LcpProblem {
   Eigen::MatrixXd M;
   Eigen::VectorXd q;
   FrictionProblem fp;
-  try {
-    if (fc2d) {
-      fp = readFc2dFile(file);
-      frictionToLcp(fp, M, q);
-    } else {
-      Problem p = readLcpFile(file);
-      M = std::move(p.M);
-      q = std::move(p.q);
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "chaindrive-lcp: %s\n", e.what());
-    return 2;
-  }
+};
 
-  LemkeSolver solver(static_cast<int>(q.size()));
-  Eigen::VectorXd z(q.size());
-  const Result r = solver.solve(M, q, z, maxPivots);
-  std::printf("status: %s\n", statusName(r.status));
-  if (repeat > 0) {
-    // median CPU time per solve (the solver is sized once; no allocation per solve)
-    std::vector<double> times;
-    for (int k = 0; k < repeat; ++k) {
-      timespec a{}, b{};
-      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &a);
-      solver.solve(M, q, z, maxPivots);
-      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &b);
-      times.push_back(static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec));
-    }
-    std::sort(times.begin(), times.end());
-    std::printf("time per solve: %.9g s (median of %d)\n", times[times.size() / 2], repeat);
+LcpProblem readProblem(const LcpArguments& r) {
+  LcpProblem p;
+  if (r.fc2d) {
+    p.fp = readFc2dFile(r.file);
+    frictionToLcp(p.fp, p.M, p.q);
+  } else {
+    Problem lp = readLcpFile(r.file);
+    p.M = std::move(lp.M);
+    p.q = std::move(lp.q);
   }
-  std::printf("pivots: %d\n", r.pivots);
-  std::printf("error: %.17g\n", r.error);
+  return p;
+}
+
+// The median CPU time per solve of `repeat` more solves (the solver is sized once; no allocation
+// per solve); z holds the last one's solution.
+void printMedianTime(LemkeSolver& solver, const LcpProblem& p, Eigen::VectorXd& z, const LcpArguments& r) {
+  std::vector<double> times;
+  for (int k = 0; k < r.repeat; ++k) {
+    timespec a{}, b{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &a);
+    solver.solve(p.M, p.q, z, r.maxPivots);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &b);
+    times.push_back(static_cast<double>(b.tv_sec - a.tv_sec) + 1e-9 * static_cast<double>(b.tv_nsec - a.tv_nsec));
+  }
+  std::sort(times.begin(), times.end());
+  std::printf("time per solve: %.9g s (median of %d)\n", times[times.size() / 2], r.repeat);
+}
+
+// Solves and prints status, pivots, error, z (and the contact forces of an fc2d problem); returns
+// the exit code.
+int solve(const LcpProblem& p, const LcpArguments& r) {
+  LemkeSolver solver(static_cast<int>(p.q.size()));
+  Eigen::VectorXd z(p.q.size());
+  const Result res = solver.solve(p.M, p.q, z, r.maxPivots);
+  std::printf("status: %s\n", statusName(res.status));
+  if (r.repeat > 0) printMedianTime(solver, p, z, r);
+  // the solution, then the contact forces of a friction problem
+  std::printf("pivots: %d\n", res.pivots);
+  std::printf("error: %.17g\n", res.error);
   std::printf("z:\n");
   for (Eigen::Index i = 0; i < z.size(); ++i) std::printf("%.17g\n", z(i));
-  if (fc2d) {
+  if (r.fc2d) {
     Eigen::VectorXd forces;
-    lcpToForces(fp, z, forces);
+    lcpToForces(p.fp, z, forces);
     std::printf("r (r_N r_T per contact):\n");
-    for (int c = 0; c < fp.contacts(); ++c) std::printf("%.17g %.17g\n", forces(2 * c), forces(2 * c + 1));
+    for (int c = 0; c < p.fp.contacts(); ++c) std::printf("%.17g %.17g\n", forces(2 * c), forces(2 * c + 1));
   }
-  if (r.status == Status::IterationLimit) {
+  if (res.status == Status::IterationLimit) {
     // on stderr, so that the result format on stdout stays the same; after it in a shared log
     std::fflush(stdout);
     std::fprintf(stderr, "chaindrive-lcp: %s\n",
-                 iterationLimitMessage(r, static_cast<int>(q.size()), "raise it with --max-pivots").c_str());
+                 iterationLimitMessage(res, static_cast<int>(p.q.size()), "raise it with --max-pivots").c_str());
   }
-  return r.status == Status::Solved ? 0 : 1;
+  return res.status == Status::Solved ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // the command line: a bad one is reported with the usage text on stderr
+  cli::Arguments args(argc, argv);
+  LcpArguments parsed;
+  try {
+    parsed = parseArguments(args);
+  } catch (const std::exception& e) {
+    return cli::argumentError(kTool, e.what(), [] { usage(stderr); });
+  }
+  if (args.help()) {
+    usage(stdout);
+    return 0;
+  }
+  // the problem (an unreadable file counts as a bad argument), its solution
+  LcpProblem problem;
+  try {
+    problem = readProblem(parsed);
+  } catch (const std::exception& e) {
+    cli::printError(kTool, e.what());
+    return 2;
+  }
+  return solve(problem, parsed);
 }

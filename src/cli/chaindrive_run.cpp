@@ -3,18 +3,20 @@
 // and the real-time factor (CPU seconds per simulated second).
 #include <time.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
-#include <iostream>
+#include <iterator>
 #include <memory>
-#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "cli/arguments.h"
 #include "description/drive_description.h"
 #include "run/inputs.h"
 #include "assembly/model.h"
@@ -24,6 +26,8 @@
 using namespace chaindrive;
 
 namespace {
+
+constexpr const char* kTool = "chaindrive-run";
 
 double cpuSeconds() {
   timespec ts{};
@@ -72,244 +76,314 @@ void usage() {
       names.c_str());
 }
 
-}  // namespace
+// ---- the command line ----
 
-int main(int argc, char** argv) {
+struct RunArguments {
   std::string drive, inputsCsv, outPath, initialState, saveState, summaryPath;
   double rpm = 3000.0, cycles = 2.0, duration = -1.0, outputStep = 1e-4;
   SimulationOptions opt;
   std::vector<std::pair<std::string, double>> loads;
   std::vector<HarmonicInputs::Order> orders;
   bool quiet = false;
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::invalid_argument("option " + a + " needs a value");
-        return argv[++i];
-      };
-      auto num = [&](const std::string& s) {
-        size_t pos = 0;
-        const double v = std::stod(s, &pos);
-        if (pos != s.size() || !std::isfinite(v)) throw std::invalid_argument("option " + a + ": '" + s + "' is not a number");
-        return v;
-      };
-      if (a == "--drive") drive = next();
-      else if (a == "--rpm") rpm = num(next());
-      else if (a == "--cycles") cycles = num(next());
-      else if (a == "--duration") duration = num(next());
-      else if (a == "--integrator") opt.integrator.method = next();
-      else if (a == "--contact-method") opt.contactMethod = next();
-      else if (a == "--joint-model") opt.jointModel = next();
-      else if (a == "--rebound-threshold") opt.integrator.reboundThreshold = num(next());
-      else if (a == "--gap-tolerance") opt.integrator.gapTolerance = num(next());
-      else if (a == "--record-lcps") {
-        const std::string spec = next();  // DIR:COUNT
-        const auto c = spec.rfind(':');
-        if (c == std::string::npos) throw std::invalid_argument("--record-lcps expects DIRECTORY:COUNT");
-        opt.integrator.recordLcpDirectory = spec.substr(0, c);
-        opt.integrator.recordLcpCount = static_cast<int>(num(spec.substr(c + 1)));
-      }
-      else if (a == "--max-event-rate") opt.integrator.maxEventsPerSecond = num(next());
-      else if (a == "--rtol") opt.integrator.rtol = num(next());
-      else if (a == "--step") opt.integrator.fixedStep = num(next());
-      else if (a == "--max-step") opt.integrator.maxStep = num(next());
-      else if (a == "--min-step") opt.integrator.minStep = num(next());
-      else if (a == "--output-step") outputStep = num(next());
-      else if (a == "--inputs") inputsCsv = next();
-      else if (a == "--out") outPath = next();
-      else if (a == "--initial-state") initialState = next();
-      else if (a == "--save-state") saveState = next();
-      else if (a == "--summary") summaryPath = next();
-      else if (a == "--link") opt.monitoredLink = static_cast<int>(num(next()));
-      else if (a == "--no-preload") opt.preload.enabled = false;
-      else if (a == "--quiet") quiet = true;
-      else if (a == "--load") {
-        const std::string s = next();
-        const auto eq = s.find('=');
-        if (eq == std::string::npos) throw std::invalid_argument("--load expects NAME=TORQUE, got '" + s + "'");
-        loads.emplace_back(s.substr(0, eq), num(s.substr(eq + 1)));
-      } else if (a == "--crank-vibration") {
-        const std::string s = next();
-        const auto c = s.find(':');
-        if (c == std::string::npos) throw std::invalid_argument("--crank-vibration expects ORDER:AMPLITUDE_DEG");
-        HarmonicInputs::Order o;
-        o.order = num(s.substr(0, c));
-        o.amplitude = num(s.substr(c + 1)) * kPi / 180.0;
-        orders.push_back(o);
-      } else if (a == "-h" || a == "--help") {
-        usage();
-        return 0;
-      } else {
-        throw std::invalid_argument("unknown argument '" + a + "'");
-      }
-    }
-    if (!(rpm > 0.0 && rpm <= 20000.0)) throw std::invalid_argument("--rpm must be in (0, 20000]");
-    if (!(outputStep > 0.0)) throw std::invalid_argument("--output-step must be positive");
-    if (!(opt.integrator.rtol > 0.0 && opt.integrator.rtol < 1.0)) throw std::invalid_argument("--rtol must be in (0, 1)");
-    if (!(opt.integrator.fixedStep > 0.0)) throw std::invalid_argument("--step must be positive");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "chaindrive-run: %s\n", e.what());
-    usage();
-    return 2;
+};
+
+using cli::Arguments;
+
+void recordLcps(Arguments& args, RunArguments& r) {
+  const std::string spec = args.value();  // DIR:COUNT
+  const auto c = spec.rfind(':');
+  if (c == std::string::npos) throw std::invalid_argument("--record-lcps expects DIRECTORY:COUNT");
+  r.opt.integrator.recordLcpDirectory = spec.substr(0, c);
+  r.opt.integrator.recordLcpCount = static_cast<int>(args.number(spec.substr(c + 1)));
+}
+
+void addLoad(Arguments& args, RunArguments& r) {
+  const std::string s = args.value();
+  const auto eq = s.find('=');
+  if (eq == std::string::npos) throw std::invalid_argument("--load expects NAME=TORQUE, got '" + s + "'");
+  r.loads.emplace_back(s.substr(0, eq), args.number(s.substr(eq + 1)));
+}
+
+void addCrankVibration(Arguments& args, RunArguments& r) {
+  const std::string s = args.value();
+  const auto c = s.find(':');
+  if (c == std::string::npos) throw std::invalid_argument("--crank-vibration expects ORDER:AMPLITUDE_DEG");
+  HarmonicInputs::Order o;
+  o.order = args.number(s.substr(0, c));
+  o.amplitude = args.number(s.substr(c + 1)) * kPi / 180.0;
+  r.orders.push_back(o);
+}
+
+struct Option {
+  const char* name;
+  void (*apply)(Arguments& args, RunArguments& r);
+};
+
+// clang-format off
+const Option kOptions[] = {
+  {"--drive",             [](Arguments& a, RunArguments& r) { r.drive = a.value(); }},
+  {"--rpm",               [](Arguments& a, RunArguments& r) { r.rpm = a.number(); }},
+  {"--cycles",            [](Arguments& a, RunArguments& r) { r.cycles = a.number(); }},
+  {"--duration",          [](Arguments& a, RunArguments& r) { r.duration = a.number(); }},
+  {"--integrator",        [](Arguments& a, RunArguments& r) { r.opt.integrator.method = a.value(); }},
+  {"--contact-method",    [](Arguments& a, RunArguments& r) { r.opt.contactMethod = a.value(); }},
+  {"--joint-model",       [](Arguments& a, RunArguments& r) { r.opt.jointModel = a.value(); }},
+  {"--rebound-threshold", [](Arguments& a, RunArguments& r) { r.opt.integrator.reboundThreshold = a.number(); }},
+  {"--gap-tolerance",     [](Arguments& a, RunArguments& r) { r.opt.integrator.gapTolerance = a.number(); }},
+  {"--record-lcps",       recordLcps},
+  {"--max-event-rate",    [](Arguments& a, RunArguments& r) { r.opt.integrator.maxEventsPerSecond = a.number(); }},
+  {"--rtol",              [](Arguments& a, RunArguments& r) { r.opt.integrator.rtol = a.number(); }},
+  {"--step",              [](Arguments& a, RunArguments& r) { r.opt.integrator.fixedStep = a.number(); }},
+  {"--max-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.maxStep = a.number(); }},
+  {"--min-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.minStep = a.number(); }},
+  {"--output-step",       [](Arguments& a, RunArguments& r) { r.outputStep = a.number(); }},
+  {"--inputs",            [](Arguments& a, RunArguments& r) { r.inputsCsv = a.value(); }},
+  {"--out",               [](Arguments& a, RunArguments& r) { r.outPath = a.value(); }},
+  {"--initial-state",     [](Arguments& a, RunArguments& r) { r.initialState = a.value(); }},
+  {"--save-state",        [](Arguments& a, RunArguments& r) { r.saveState = a.value(); }},
+  {"--summary",           [](Arguments& a, RunArguments& r) { r.summaryPath = a.value(); }},
+  {"--link",              [](Arguments& a, RunArguments& r) { r.opt.monitoredLink = static_cast<int>(a.number()); }},
+  {"--no-preload",        [](Arguments&, RunArguments& r) { r.opt.preload.enabled = false; }},
+  {"--quiet",             [](Arguments&, RunArguments& r) { r.quiet = true; }},
+  {"--load",              addLoad},
+  {"--crank-vibration",   addCrankVibration},
+};
+// clang-format on
+
+// The options in any order, -h/--help ends the reading; then the ranges of the numbers. A bad
+// argument throws (std::invalid_argument, or std::stod's exceptions).
+RunArguments parseArguments(Arguments& args) {
+  RunArguments r;
+  while (args.next()) {
+    const auto option = std::find_if(std::begin(kOptions), std::end(kOptions),
+                                     [&](const Option& o) { return args.current() == o.name; });
+    if (option == std::end(kOptions)) throw std::invalid_argument("unknown argument '" + args.current() + "'");
+    option->apply(args, r);
+  }
+  if (args.help()) return r;
+  if (!(r.rpm > 0.0 && r.rpm <= 20000.0)) throw std::invalid_argument("--rpm must be in (0, 20000]");
+  if (!(r.outputStep > 0.0)) throw std::invalid_argument("--output-step must be positive");
+  if (!(r.opt.integrator.rtol > 0.0 && r.opt.integrator.rtol < 1.0)) throw std::invalid_argument("--rtol must be in (0, 1)");
+  if (!(r.opt.integrator.fixedStep > 0.0)) throw std::invalid_argument("--step must be positive");
+  return r;
+}
+
+// ---- building the run ----
+
+// The inputs: the table of --inputs, else the mean crank speed with its vibration orders and
+// constant load torques on free sprockets.
+std::unique_ptr<InputSignal> makeInputs(const Model& m, const RunArguments& r, double w0) {
+  if (!r.inputsCsv.empty()) return std::make_unique<TableInputs>(m, r.inputsCsv);
+  auto h = std::make_unique<HarmonicInputs>(m, w0);
+  for (const auto& o : r.orders) h->addOrder(o);
+  for (const auto& [name, tau] : r.loads) {
+    const int k = m.rotorIndex(name);
+    if (k < 0 || !m.rotors[k].isSprocket || m.rotors[k].prescribed)
+      throw std::invalid_argument("--load: '" + name + "' is not a free sprocket of the drive");
+    h->setLoad(k, tau);
+  }
+  return h;
+}
+
+// The start: the saved state of --initial-state, else the preloaded start state at t = 0 (the
+// start time is returned); then, unless --quiet, the drive and how the start was found.
+double startRun(Simulation& sim, const Model& m, const RunArguments& r) {
+  const double cpu0 = cpuSeconds();
+  double t0 = 0.0;
+  if (!r.initialState.empty()) {
+    const StateSnapshot snap = readStateFile(r.initialState, m);
+    t0 = snap.time;
+    sim.startFrom(t0, snap.y);
+  } else {
+    sim.start(0.0);
+  }
+  const double cpuPreload = cpuSeconds() - cpu0;
+  if (!r.quiet) {
+    std::printf("drive: %s (%d links, %zu rotors, %d states)\n", m.name.c_str(), m.chain.links, m.rotors.size(), m.nStates);
+    if (r.initialState.empty())
+      std::printf("start: %s, %.3f s CPU\n", sim.preloadReport().message.c_str(), cpuPreload);
+    else
+      std::printf("start: state of %s at t = %.6f s\n", r.initialState.c_str(), t0);
+  }
+  return t0;
+}
+
+// ---- writing results ----
+
+// The outputs as CSV (--out): a header, then one row per output time; nothing without --out.
+class CsvOutput {
+ public:
+  CsvOutput(const std::string& path, const Model& m) : m_(m) {
+    if (path.empty()) return;
+    csv_.open(path);
+    if (!csv_) throw std::runtime_error("cannot write " + path);
+    csv_ << "time";
+    for (const auto& r : m.rotors) csv_ << "," << r.name << ".phi," << r.name << ".w";
+    csv_ << "," << (m.drivenRotor >= 0 ? m.rotors[m.drivenRotor].name : std::string("crankshaft")) << ".tau";
+    csv_ << ",tensioner.F,tensioner.s,chain.Ftight,chain.Fslack,link.F,link.Fn,link.FnSprocket,link.FnGuide,link.x,link.y"
+            ",energy.kinetic,energy.elastic,energy.gravity,energy.dissipated,energy.input,contacts\n";
+    csv_.precision(10);
   }
 
-  try {
-    const DriveDescription d = drive.empty() ? defaultDriveDescription() : loadDriveDescription(drive);
-    auto model = std::make_shared<const Model>(assemble(d));
-    const Model& m = *model;
-    const double w0 = rpm * 2.0 * kPi / 60.0;
-    const double tEnd = duration > 0.0 ? duration : cycles * 2.0 * 2.0 * kPi / w0;
-    std::unique_ptr<InputSignal> in;
-    if (!inputsCsv.empty()) {
-      in = std::make_unique<TableInputs>(m, inputsCsv);
-    } else {
-      auto h = std::make_unique<HarmonicInputs>(m, w0);
-      for (const auto& o : orders) h->addOrder(o);
-      for (const auto& [name, tau] : loads) {
-        const int r = m.rotorIndex(name);
-        if (r < 0 || !m.rotors[r].isSprocket || m.rotors[r].prescribed)
-          throw std::invalid_argument("--load: '" + name + "' is not a free sprocket of the drive");
-        h->setLoad(r, tau);
-      }
-      in = std::move(h);
-    }
-    Simulation sim(model, opt, std::move(in));
-    const double cpu0 = cpuSeconds();
-    double t0 = 0.0;
-    if (!initialState.empty()) {
-      const StateSnapshot snap = readStateFile(initialState, m);
-      t0 = snap.time;
-      sim.startFrom(t0, snap.y);
-    } else {
-      sim.start(0.0);
-    }
-    const double cpuPreload = cpuSeconds() - cpu0;
-    if (!quiet) {
-      std::printf("drive: %s (%d links, %zu rotors, %d states)\n", m.name.c_str(), m.chain.links, m.rotors.size(), m.nStates);
-      if (initialState.empty())
-        std::printf("start: %s, %.3f s CPU\n", sim.preloadReport().message.c_str(), cpuPreload);
-      else
-        std::printf("start: state of %s at t = %.6f s\n", initialState.c_str(), t0);
-    }
-    std::ofstream csv;
-    if (!outPath.empty()) {
-      csv.open(outPath);
-      if (!csv) throw std::runtime_error("cannot write " + outPath);
-      csv << "time";
-      for (const auto& r : m.rotors) csv << "," << r.name << ".phi," << r.name << ".w";
-      csv << "," << (m.drivenRotor >= 0 ? m.rotors[m.drivenRotor].name : std::string("crankshaft")) << ".tau";
-      csv << ",tensioner.F,tensioner.s,chain.Ftight,chain.Fslack,link.F,link.Fn,link.FnSprocket,link.FnGuide,link.x,link.y"
-             ",energy.kinetic,energy.elastic,energy.gravity,energy.dissipated,energy.input,contacts\n";
-      csv.precision(10);
-    }
-    auto write = [&](const Outputs& o) {
-      if (!csv.is_open()) return;
-      csv << o.time;
-      for (std::size_t r = 0; r < m.rotors.size(); ++r) csv << "," << o.rotorAngle[r] << "," << o.rotorRate[r];
-      csv << "," << o.crankTorque << "," << o.tensionerForce << "," << o.tensionerStroke << "," << o.tightSpanForce << ","
-          << o.slackSpanForce << "," << o.linkTension << "," << o.linkNormalForce << "," << o.linkSprocketForce << ","
-          << o.linkGuideForce << "," << o.linkPosition.x << "," << o.linkPosition.y << "," << o.energy.kinetic << ","
-          << o.energy.elastic << "," << o.energy.gravity << "," << o.energy.dissipated << "," << o.energy.inputWork << ","
-          << o.contacts << "\n";
-    };
-    write(sim.outputs());
-    // Outputs every `stride` points of the run's time grid (whole fixed steps, or whole quanta
-    // of the adaptive methods), so that every output time is a grid point and every step is whole.
-    const TimeGrid& grid = sim.grid();
-    const long long stride = std::max(1LL, std::llround(outputStep / grid.unit));
-    const double outputInterval = static_cast<double>(stride) * grid.unit;
-    const long nOut = std::max(1L, static_cast<long>(std::floor(tEnd / outputInterval + 1e-9)));  // not past tEnd
-    if (std::fabs(outputInterval - outputStep) > 1e-9 * outputStep)
-      std::fprintf(stderr, "chaindrive-run: note: the output step %g s is not a whole number of grid steps of %g s; "
-                   "outputs every %g s\n", outputStep, grid.unit, outputInterval);
-    const double cpuRun0 = cpuSeconds();
-    int status = 0;
-    std::string failure;
-    double tReached = 0.0;
-    std::string failureKindName;
-    double failureTime = 0.0;
-    for (long k = 1; k <= nOut; ++k) {
-      try {
-        sim.advanceTo(grid.time(k * stride));
-      } catch (const IntegrationError& e) {
-        failure = e.what();
-        failureKindName = e.kind();
-        failureTime = e.time();
-        status = 3;
-        break;
-      }
-      tReached = sim.time() - t0;
-      write(sim.outputs());
-    }
-    const double cpu = cpuSeconds() - cpuRun0;
-    const IntegratorStats st = sim.integratorStats();
-    if (status != 0) std::printf("FAILED: %s\n", failure.c_str());
-    const std::string method = sim.contactMethod() == "compliant" ? opt.integrator.method : sim.contactMethod();
-    std::printf("integrator %s: simulated %.6f s (%.3f engine cycles at %.0f rpm) in %.3f s CPU -> %.3f CPU s per simulated s\n",
-                method.c_str(), tReached, tReached * w0 / (4.0 * kPi), rpm, cpu, tReached > 0 ? cpu / tReached : 0.0);
-    if (const ns::NsStats* cs = sim.contactStats()) {
-      const double per = tReached > 0 ? 1.0 / tReached : 0.0;
-      auto f = [](long long v) { return static_cast<double>(v); };
-      std::printf("contact method %s: per simulated second %.0f steps, %.0f events, %.0f impacts, %.0f LCP solves, "
-                  "mean LCP size %.1f, max %lld, %.0f pivots, %.0f regularized LCPs\n",
-                  sim.contactMethod().c_str(), f(cs->steps) * per, f(cs->events) * per, f(cs->impacts) * per,
-                  f(cs->lcpSolves) * per, cs->lcpSolves ? f(cs->lcpSizeSum) / f(cs->lcpSolves) : 0.0, cs->lcpSizeMax,
-                  f(cs->pivots) * per, f(cs->regularizedLcps) * per);
-    }
-    std::printf("steps %lld, rhs evaluations %lld (model count %lld), jacobians %lld, error-test failures %lld, "
-                "convergence failures %lld, last step %.3e s\n",
-                st.steps, st.rhsEvaluations, sim.rhsEvaluations(), st.jacobianEvaluations, st.errorTestFailures,
-                st.convergenceFailures, st.lastStep);
-    if (!summaryPath.empty()) {
-      nlohmann::json j;
-      j["status"] = status == 0 ? "ok" : "failed";
-      j["contactMethod"] = sim.contactMethod();
-      j["method"] = method;
-      j["rpm"] = rpm;
-      j["startTime"] = t0;
-      j["simulated"] = tReached;
-      j["requested"] = tEnd;
-      j["cpuSeconds"] = cpu;
-      if (tReached > 0) j["cpuPerSimulatedSecond"] = cpu / tReached;
-      j["steps"] = st.steps;
-      if (sim.integratorFixedStep() > 0.0) j["step"] = sim.integratorFixedStep();
-      j["outputStep"] = outputInterval;
-      j["rhsEvaluations"] = sim.rhsEvaluations();
-      j["jacobianEvaluations"] = st.jacobianEvaluations;
-      j["errorTestFailures"] = st.errorTestFailures;
-      j["convergenceFailures"] = st.convergenceFailures;
-      if (status != 0) {
-        j["failure"] = failure;
-        j["failureKind"] = failureKindName;
-        j["failureTime"] = failureTime;
-      }
-      if (const ns::NsStats* cs = sim.contactStats()) {
-        j["events"] = cs->events;
-        j["impacts"] = cs->impacts;
-        j["lcpSolves"] = cs->lcpSolves;
-        j["lcpSizeMean"] = cs->lcpSolves ? static_cast<double>(cs->lcpSizeSum) / static_cast<double>(cs->lcpSolves) : 0.0;
-        j["lcpSizeMax"] = cs->lcpSizeMax;
-        j["pivots"] = cs->pivots;
-        j["regularizedLcps"] = cs->regularizedLcps;
-        j["contactSteps"] = cs->steps;
-      }
-      std::ofstream sj(summaryPath);
-      if (!sj) throw std::runtime_error("cannot write " + summaryPath);
-      sj << j.dump(1) << "\n";
-    }
-    if (status == 0 && !saveState.empty()) writeStateFile(saveState, m, StateSnapshot{sim.time(), sim.state()});
-    if (status == 0 && !quiet) {
-      const Outputs& o = sim.outputs();
-      std::printf("final: tensioner %.2f N, tight span %.2f N, slack span %.2f N, crank torque %.3f N m, contacts %d\n",
-                  o.tensionerForce, o.tightSpanForce, o.slackSpanForce, o.crankTorque, o.contacts);
-    }
-    return status;
-  } catch (const DescriptionError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "chaindrive-run: %s\n", e.what());
-    return 1;
+  void write(const Outputs& o) {
+    if (!csv_.is_open()) return;
+    csv_ << o.time;
+    for (std::size_t r = 0; r < m_.rotors.size(); ++r) csv_ << "," << o.rotorAngle[r] << "," << o.rotorRate[r];
+    csv_ << "," << o.crankTorque << "," << o.tensionerForce << "," << o.tensionerStroke << "," << o.tightSpanForce << ","
+         << o.slackSpanForce << "," << o.linkTension << "," << o.linkNormalForce << "," << o.linkSprocketForce << ","
+         << o.linkGuideForce << "," << o.linkPosition.x << "," << o.linkPosition.y << "," << o.energy.kinetic << ","
+         << o.energy.elastic << "," << o.energy.gravity << "," << o.energy.dissipated << "," << o.energy.inputWork << ","
+         << o.contacts << "\n";
   }
+
+ private:
+  const Model& m_;
+  std::ofstream csv_;
+};
+
+// How far a run got, at what cost, and why it stopped early if it did.
+struct RunResult {
+  int status = 0;               // the exit code: 0, or 3 when the integration failed
+  double tReached = 0.0;        // simulated time from the start [s]
+  double cpu = 0.0;             // CPU time of the integration [s]
+  double outputInterval = 0.0;  // [s] whole grid steps
+  std::string failure, failureKind;
+  double failureTime = 0.0;
+};
+
+// Outputs every `stride` points of the run's time grid (whole fixed steps, or whole quanta
+// of the adaptive methods), so that every output time is a grid point and every step is whole.
+RunResult integrate(Simulation& sim, const RunArguments& r, double t0, double tEnd, CsvOutput& csv) {
+  // the output times: whole grid steps, none past tEnd
+  RunResult res;
+  const TimeGrid& grid = sim.grid();
+  const long long stride = std::max(1LL, std::llround(r.outputStep / grid.unit));
+  res.outputInterval = static_cast<double>(stride) * grid.unit;
+  const long nOut = std::max(1L, static_cast<long>(std::floor(tEnd / res.outputInterval + 1e-9)));  // not past tEnd
+  if (std::fabs(res.outputInterval - r.outputStep) > 1e-9 * r.outputStep)
+    std::fprintf(stderr, "chaindrive-run: note: the output step %g s is not a whole number of grid steps of %g s; "
+                 "outputs every %g s\n", r.outputStep, grid.unit, res.outputInterval);
+  // the integration, output by output, up to a failure
+  const double cpuRun0 = cpuSeconds();
+  for (long k = 1; k <= nOut; ++k) {
+    try {
+      sim.advanceTo(grid.time(k * stride));
+    } catch (const IntegrationError& e) {
+      res.failure = e.what();
+      res.failureKind = e.kind();
+      res.failureTime = e.time();
+      res.status = 3;
+      break;
+    }
+    res.tReached = sim.time() - t0;
+    csv.write(sim.outputs());
+  }
+  res.cpu = cpuSeconds() - cpuRun0;
+  return res;
+}
+
+// The method that ran: the integrator for compliant contacts, else the contact method.
+std::string methodName(const Simulation& sim, const RunArguments& r) {
+  return sim.contactMethod() == "compliant" ? r.opt.integrator.method : sim.contactMethod();
+}
+
+void printContactStats(const Simulation& sim, const ns::NsStats& cs, double tReached) {
+  const double per = tReached > 0 ? 1.0 / tReached : 0.0;
+  auto f = [](long long v) { return static_cast<double>(v); };
+  std::printf("contact method %s: per simulated second %.0f steps, %.0f events, %.0f impacts, %.0f LCP solves, "
+              "mean LCP size %.1f, max %lld, %.0f pivots, %.0f regularized LCPs\n",
+              sim.contactMethod().c_str(), f(cs.steps) * per, f(cs.events) * per, f(cs.impacts) * per,
+              f(cs.lcpSolves) * per, cs.lcpSolves ? f(cs.lcpSizeSum) / f(cs.lcpSolves) : 0.0, cs.lcpSizeMax,
+              f(cs.pivots) * per, f(cs.regularizedLcps) * per);
+}
+
+// The run's figures on stdout: the failure, the cost, the contact method's and the integrator's counters.
+void printReport(const Simulation& sim, const RunArguments& r, const RunResult& res, double w0) {
+  const IntegratorStats st = sim.integratorStats();
+  if (res.status != 0) std::printf("FAILED: %s\n", res.failure.c_str());
+  std::printf("integrator %s: simulated %.6f s (%.3f engine cycles at %.0f rpm) in %.3f s CPU -> %.3f CPU s per simulated s\n",
+              methodName(sim, r).c_str(), res.tReached, res.tReached * w0 / (4.0 * kPi), r.rpm, res.cpu,
+              res.tReached > 0 ? res.cpu / res.tReached : 0.0);
+  if (const ns::NsStats* cs = sim.contactStats()) printContactStats(sim, *cs, res.tReached);
+  std::printf("steps %lld, rhs evaluations %lld (model count %lld), jacobians %lld, error-test failures %lld, "
+              "convergence failures %lld, last step %.3e s\n",
+              st.steps, st.rhsEvaluations, sim.rhsEvaluations(), st.jacobianEvaluations, st.errorTestFailures,
+              st.convergenceFailures, st.lastStep);
+}
+
+void addContactStats(const ns::NsStats& cs, nlohmann::json& j) {
+  j["events"] = cs.events;
+  j["impacts"] = cs.impacts;
+  j["lcpSolves"] = cs.lcpSolves;
+  j["lcpSizeMean"] = cs.lcpSolves ? static_cast<double>(cs.lcpSizeSum) / static_cast<double>(cs.lcpSolves) : 0.0;
+  j["lcpSizeMax"] = cs.lcpSizeMax;
+  j["pivots"] = cs.pivots;
+  j["regularizedLcps"] = cs.regularizedLcps;
+  j["contactSteps"] = cs.steps;
+}
+
+// The run's figures as JSON (--summary): CPU time, counters, the failure and its kind.
+void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult& res, double t0, double tEnd) {
+  // what ran, how far and at what cost
+  const IntegratorStats st = sim.integratorStats();
+  nlohmann::json j;
+  j["status"] = res.status == 0 ? "ok" : "failed";
+  j["contactMethod"] = sim.contactMethod();
+  j["method"] = methodName(sim, r);
+  j["rpm"] = r.rpm;
+  j["startTime"] = t0;
+  j["simulated"] = res.tReached;
+  j["requested"] = tEnd;
+  j["cpuSeconds"] = res.cpu;
+  if (res.tReached > 0) j["cpuPerSimulatedSecond"] = res.cpu / res.tReached;
+  // the integrator's counters
+  j["steps"] = st.steps;
+  if (sim.integratorFixedStep() > 0.0) j["step"] = sim.integratorFixedStep();
+  j["outputStep"] = res.outputInterval;
+  j["rhsEvaluations"] = sim.rhsEvaluations();
+  j["jacobianEvaluations"] = st.jacobianEvaluations;
+  j["errorTestFailures"] = st.errorTestFailures;
+  j["convergenceFailures"] = st.convergenceFailures;
+  // why it stopped early, the contact method's counters
+  if (res.status != 0) {
+    j["failure"] = res.failure;
+    j["failureKind"] = res.failureKind;
+    j["failureTime"] = res.failureTime;
+  }
+  if (const ns::NsStats* cs = sim.contactStats()) addContactStats(*cs, j);
+  std::ofstream sj(r.summaryPath);
+  if (!sj) throw std::runtime_error("cannot write " + r.summaryPath);
+  sj << j.dump(1) << "\n";
+}
+
+// The whole run; returns the exit code (0, or 3 when the integration failed).
+int run(const RunArguments& r) {
+  // the drive, its inputs and the time to simulate
+  const DriveDescription desc = cli::loadDrive(r.drive);
+  auto model = std::make_shared<const Model>(assemble(desc));
+  const Model& m = *model;
+  const double w0 = r.rpm * 2.0 * kPi / 60.0;
+  const double tEnd = r.duration > 0.0 ? r.duration : r.cycles * 2.0 * 2.0 * kPi / w0;
+  Simulation sim(model, r.opt, makeInputs(m, r, w0));
+  // the start, the integration with its outputs, the figures
+  const double t0 = startRun(sim, m, r);
+  CsvOutput csv(r.outPath, m);
+  csv.write(sim.outputs());
+  const RunResult res = integrate(sim, r, t0, tEnd, csv);
+  printReport(sim, r, res, w0);
+  if (!r.summaryPath.empty()) writeSummary(sim, r, res, t0, tEnd);
+  // a run that reached its end: the state to continue from, the final forces
+  if (res.status == 0 && !r.saveState.empty()) writeStateFile(r.saveState, m, StateSnapshot{sim.time(), sim.state()});
+  if (res.status == 0 && !r.quiet) {
+    const Outputs& o = sim.outputs();
+    std::printf("final: tensioner %.2f N, tight span %.2f N, slack span %.2f N, crank torque %.3f N m, contacts %d\n",
+                o.tensionerForce, o.tightSpanForce, o.slackSpanForce, o.crankTorque, o.contacts);
+  }
+  return res.status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::runTool(kTool, argc, argv, usage, parseArguments, run);
 }

@@ -198,7 +198,7 @@ void CallSequence::deserializeState(bool good) {
 
 // Damage as a broken file or transfer would do it; some damage keeps the size and the header.
 void CallSequence::corrupt(std::vector<char>& bytes) {
-  // Offsets of the header fields as Instance::serialize writes them (magic, component count,
+  // Offsets of the header fields as fmu::serialize writes them (magic, component count,
   // machine state (4 bytes), eight doubles, two counters); should the layout change, these
   // corruptions only become less targeted.
   constexpr std::size_t kHeaderFields[] = {8, 16, 20, 28, 36, 44, 52, 60, 68, 76, 84, 92};

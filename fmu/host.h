@@ -1,0 +1,71 @@
+// The protocol side of an FMU instance, as its model adapter sees it (Reference-FMUs' model code
+// reads the ModelInstance for the same things): logging with its categories, the state of the
+// FMI 2.0 co-simulation state machine, the communication times and the resources folder. It
+// knows no model; Instance (instance.h) adds the protocol's operations and holds the adapter.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "fmi2Functions.h"
+
+namespace chaindrive::fmu {
+
+/// States of the FMI 2.0 co-simulation state machine (bit masks for the allowed-call tables).
+enum State : unsigned {
+  kInstantiated = 1u << 0,
+  kInitializationMode = 1u << 1,
+  kStepComplete = 1u << 2,
+  kStepFailed = 1u << 3,
+  kTerminated = 1u << 4,
+  kError = 1u << 5,
+};
+
+constexpr unsigned kAllStates =
+    kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
+
+class Host {
+ public:
+  Host(const char* instanceName, const fmi2CallbackFunctions* callbacks, const char* resourceLocation, bool loggingOn);
+
+  // logging (printf-style message; errors and warnings are always passed to the environment,
+  // other categories when logging is on and the category is enabled)
+  void log(fmi2Status status, const char* category, const char* fmt, ...);
+  fmi2Status setDebugLogging(bool on, std::size_t n, const fmi2String categories[]);
+
+  unsigned state() const { return state_; }
+  void setState(unsigned s) { state_ = s; }
+  /// Returns false after logging "<function>: not allowed in state <state>" if the current state
+  /// is not in `allowedStates`.
+  bool allowed(const char* function, unsigned allowedStates);
+  /// Before the initialization ends (instantiated or initialization mode): parameters may change.
+  bool initializing() const { return (state_ & (kInstantiated | kInitializationMode)) != 0; }
+
+  /// The master's communication point: the start time, then cp + h of the last step as the
+  /// master formed it.
+  double time() const { return time_; }
+  /// The model's run starts at time(): that is the last successful time from now on.
+  void runStarted() { lastSuccessfulTime_ = time_; }
+
+  /// The resources folder of the FMU (empty if the importer gave none).
+  const std::string& resourceDir() const { return resourceDir_; }
+
+ protected:
+  unsigned state_ = kInstantiated;
+  double time_ = 0.0, startTime_ = 0.0, stopTime_ = 0.0, lastSuccessfulTime_ = 0.0;
+  bool stopTimeDefined_ = false;
+
+ private:
+  std::string name_;
+  fmi2CallbackFunctions callbacks_;
+  std::string resourceDir_;
+  bool loggingOn_ = false;
+  std::vector<std::string> categories_;  // enabled categories; empty = all
+};
+
+/// The resources directory from fmuResourceLocation (file:///dir, file:////dir, trailing '/',
+/// percent-encoding, NULL); empty if none.
+std::string resourceDirectory(const char* location);
+
+}  // namespace chaindrive::fmu

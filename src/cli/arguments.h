@@ -1,0 +1,91 @@
+// What the command-line tools share: reading the command line, the drive to work on, and how a
+// problem is reported (messages on stderr prefixed with the tool's name; exit code 2 for a bad
+// command line, 1 for a failed run).
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "description/drive_description.h"
+
+namespace chaindrive::cli {
+
+/// The arguments argv[1..] one after the other, and the values of options.
+class Arguments {
+ public:
+  Arguments(int argc, char** argv) : argc_(argc), argv_(argv) {}
+
+  /// Moves to the next argument; false after the last one, and at -h or --help (then help()).
+  bool next();
+  bool help() const { return help_; }
+  /// The argument moved to (an option, whose values value() and number() consume).
+  const std::string& current() const { return current_; }
+  /// Another argument follows.
+  bool hasValue() const { return index_ + 1 < argc_; }
+  /// The next argument as the value of the current option; throws std::invalid_argument
+  /// ("option X needs a value") if there is none.
+  std::string value();
+  /// value() as a finite number.
+  double number() { return number(value()); }
+  /// Text of the current option's value (or of a part of it) as a finite number; throws
+  /// std::invalid_argument ("option X: 'S' is not a number"; std::stod's own when S does not
+  /// start with a number).
+  double number(const std::string& text) const;
+
+ private:
+  int argc_;
+  char** argv_;
+  int index_ = 0;
+  std::string current_;
+  bool help_ = false;
+};
+
+/// "<tool>: <message>" on stderr.
+void printError(const char* tool, const std::string& message);
+
+/// A bad command line: the message and the usage text (usage()); exit code 2.
+template <class Usage>
+int argumentError(const char* tool, const std::string& message, Usage&& usage) {
+  printError(tool, message);
+  usage();
+  return 2;
+}
+
+/// The drive description of --drive FILE; the embedded default drive when `path` is empty.
+DriveDescription loadDrive(const std::string& path);
+
+/// Runs a tool's work and returns its exit code; an invalid drive description prints its
+/// problems, any other error "<tool>: <what>"; both give exit code 1.
+template <class Work>
+int reportingErrors(const char* tool, Work&& work) {
+  try {
+    return work();
+  } catch (const DescriptionError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    printError(tool, e.what());
+    return 1;
+  }
+}
+
+/// The main of a tool: its command line read by parse(Arguments&), which throws std::exception
+/// for a bad argument (then the message and the usage text, exit code 2); -h/--help: the usage
+/// text, exit code 0; then work(what parse returned), its errors reported as by reportingErrors.
+template <class Parse, class Work>
+int runTool(const char* tool, int argc, char** argv, void (*usage)(), Parse&& parse, Work&& work) {
+  Arguments args(argc, argv);
+  decltype(parse(args)) parsed;
+  try {
+    parsed = parse(args);
+  } catch (const std::exception& e) {
+    return argumentError(tool, e.what(), usage);
+  }
+  if (args.help()) {
+    usage();
+    return 0;
+  }
+  return reportingErrors(tool, [&] { return work(parsed); });
+}
+
+}  // namespace chaindrive::cli
