@@ -220,9 +220,9 @@ void ChainDriveModel::startSimulation() {
   // the solver options from the parameters
   SimulationOptions opt;
   opt.integrator.method = params_.method;
-  opt.integrator.rtol = params_.tolerance;
-  opt.integrator.fixedStep = params_.step;
-  opt.integrator.stopAtOutputs = true;
+  opt.integrator.adaptive.rtol = params_.tolerance;
+  opt.integrator.fixed.step = params_.step;
+  opt.integrator.adaptive.stopAtOutputs = true;
   opt.contactMethod = params_.contactMethod;
   opt.jointModel = params_.jointModel;
   opt.preload.enabled = params_.preload;

@@ -93,8 +93,8 @@ void recordLcps(Arguments& args, RunArguments& r) {
   const std::string spec = args.value();  // DIR:COUNT
   const auto c = spec.rfind(':');
   if (c == std::string::npos) throw std::invalid_argument("--record-lcps expects DIRECTORY:COUNT");
-  r.opt.integrator.recordLcpDirectory = spec.substr(0, c);
-  r.opt.integrator.recordLcpCount = static_cast<int>(args.number(spec.substr(c + 1)));
+  r.opt.integrator.rigid.recordLcpDirectory = spec.substr(0, c);
+  r.opt.integrator.rigid.recordLcpCount = static_cast<int>(args.number(spec.substr(c + 1)));
 }
 
 void addLoad(Arguments& args, RunArguments& r) {
@@ -128,14 +128,14 @@ const Option kOptions[] = {
   {"--integrator",        [](Arguments& a, RunArguments& r) { r.opt.integrator.method = a.value(); }},
   {"--contact-method",    [](Arguments& a, RunArguments& r) { r.opt.contactMethod = a.value(); }},
   {"--joint-model",       [](Arguments& a, RunArguments& r) { r.opt.jointModel = a.value(); }},
-  {"--rebound-threshold", [](Arguments& a, RunArguments& r) { r.opt.integrator.reboundThreshold = a.number(); }},
-  {"--gap-tolerance",     [](Arguments& a, RunArguments& r) { r.opt.integrator.gapTolerance = a.number(); }},
+  {"--rebound-threshold", [](Arguments& a, RunArguments& r) { r.opt.integrator.eventDriven.reboundThreshold = a.number(); }},
+  {"--gap-tolerance",     [](Arguments& a, RunArguments& r) { r.opt.integrator.rigid.gapTolerance = a.number(); }},
   {"--record-lcps",       recordLcps},
-  {"--max-event-rate",    [](Arguments& a, RunArguments& r) { r.opt.integrator.maxEventsPerSecond = a.number(); }},
-  {"--rtol",              [](Arguments& a, RunArguments& r) { r.opt.integrator.rtol = a.number(); }},
-  {"--step",              [](Arguments& a, RunArguments& r) { r.opt.integrator.fixedStep = a.number(); }},
-  {"--max-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.maxStep = a.number(); }},
-  {"--min-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.minStep = a.number(); }},
+  {"--max-event-rate",    [](Arguments& a, RunArguments& r) { r.opt.integrator.eventDriven.maxEventsPerSecond = a.number(); }},
+  {"--rtol",              [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.rtol = a.number(); }},
+  {"--step",              [](Arguments& a, RunArguments& r) { r.opt.integrator.fixed.step = a.number(); }},
+  {"--max-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.maxStep = a.number(); }},
+  {"--min-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.minStep = a.number(); }},
   {"--output-step",       [](Arguments& a, RunArguments& r) { r.outputStep = a.number(); }},
   {"--inputs",            [](Arguments& a, RunArguments& r) { r.inputsCsv = a.value(); }},
   {"--out",               [](Arguments& a, RunArguments& r) { r.outPath = a.value(); }},
@@ -163,8 +163,8 @@ RunArguments parseArguments(Arguments& args) {
   if (args.help()) return r;
   if (!(r.rpm > 0.0 && r.rpm <= 20000.0)) throw std::invalid_argument("--rpm must be in (0, 20000]");
   if (!(r.outputStep > 0.0)) throw std::invalid_argument("--output-step must be positive");
-  if (!(r.opt.integrator.rtol > 0.0 && r.opt.integrator.rtol < 1.0)) throw std::invalid_argument("--rtol must be in (0, 1)");
-  if (!(r.opt.integrator.fixedStep > 0.0)) throw std::invalid_argument("--step must be positive");
+  if (!(r.opt.integrator.adaptive.rtol > 0.0 && r.opt.integrator.adaptive.rtol < 1.0)) throw std::invalid_argument("--rtol must be in (0, 1)");
+  if (!(r.opt.integrator.fixed.step > 0.0)) throw std::invalid_argument("--step must be positive");
   return r;
 }
 

@@ -15,10 +15,16 @@ namespace {
 
 class ArkodeErk : public Integrator {
  public:
-  ArkodeErk(OdeSystem& sys, const IntegratorSettings& s, bool fixed)
-      : sys_(sys), settings_(s), fixed_(fixed), y_(sys.size(), ctx_.ctx), atol_(sys.size(), ctx_.ctx) {
+  ArkodeErk(OdeSystem& sys, const AdaptiveOptions& adaptive, const ErkOptions& erk, const FixedStepOptions* fixed)
+      : sys_(sys),
+        adaptive_(adaptive),
+        erk_(erk),
+        fixed_(fixed != nullptr),
+        step_(fixed ? fixed->step : 0.0),
+        y_(sys.size(), ctx_.ctx),
+        atol_(sys.size(), ctx_.ctx) {
     cb_.sys = &sys;
-    if (fixed && !(s.fixedStep > 0.0)) throw std::invalid_argument("arkode-erk-fixed needs a positive fixed step");
+    if (fixed_ && !(step_ > 0.0)) throw std::invalid_argument("arkode-erk-fixed needs a positive fixed step");
   }
   ~ArkodeErk() override {
     if (mem_) ERKStepFree(&mem_);
@@ -28,21 +34,21 @@ class ArkodeErk : public Integrator {
 
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * sys_.size());
-    grid_ = TimeGrid{t0, settings_.fixedStep};
+    grid_ = TimeGrid{t0, step_};
     k_ = 0;
     if (!mem_) {
       mem_ = ERKStepCreate(chaindriveRhs, t0, y_.v, ctx_.ctx);
       if (!mem_) throw std::runtime_error("ERKStepCreate failed");
       check(ERKStepSetUserData(mem_, &cb_), "ERKStepSetUserData");
       check(ERKStepSetErrHandlerFn(mem_, chaindriveErrHandler, &cb_), "ERKStepSetErrHandlerFn");
-      if (ERKStepSetTableName(mem_, settings_.erkTable.c_str()) != 0)
-        throw std::invalid_argument("unknown ARKODE ERK table '" + settings_.erkTable + "'");
-      fillAbsoluteTolerances(sys_, settings_.rtol, atol_.v);
-      check(ERKStepSVtolerances(mem_, settings_.rtol, atol_.v), "ERKStepSVtolerances");
-      check(ERKStepSetMaxNumSteps(mem_, settings_.maxStepsPerOutput), "ERKStepSetMaxNumSteps");
-      if (!fixed_ && settings_.minStep > 0.0) check(ERKStepSetMinStep(mem_, settings_.minStep), "ERKStepSetMinStep");
-      if (settings_.maxStep > 0.0) check(ERKStepSetMaxStep(mem_, settings_.maxStep), "ERKStepSetMaxStep");
-      if (fixed_) check(ERKStepSetFixedStep(mem_, settings_.fixedStep), "ERKStepSetFixedStep");
+      if (ERKStepSetTableName(mem_, erk_.table.c_str()) != 0)
+        throw std::invalid_argument("unknown ARKODE ERK table '" + erk_.table + "'");
+      fillAbsoluteTolerances(sys_, adaptive_.rtol, atol_.v);
+      check(ERKStepSVtolerances(mem_, adaptive_.rtol, atol_.v), "ERKStepSVtolerances");
+      check(ERKStepSetMaxNumSteps(mem_, adaptive_.maxStepsPerOutput), "ERKStepSetMaxNumSteps");
+      if (!fixed_ && adaptive_.minStep > 0.0) check(ERKStepSetMinStep(mem_, adaptive_.minStep), "ERKStepSetMinStep");
+      if (adaptive_.maxStep > 0.0) check(ERKStepSetMaxStep(mem_, adaptive_.maxStep), "ERKStepSetMaxStep");
+      if (fixed_) check(ERKStepSetFixedStep(mem_, step_), "ERKStepSetFixedStep");
     } else {
       check(ERKStepReset(mem_, t0, y_.v), "ERKStepReset");
     }
@@ -53,7 +59,7 @@ class ArkodeErk : public Integrator {
     if (fixed_) {
       advanceOnGrid(tout);
     } else {
-      if (settings_.stopAtOutputs) check(ERKStepSetStopTime(mem_, tout), "ERKStepSetStopTime");
+      if (adaptive_.stopAtOutputs) check(ERKStepSetStopTime(mem_, tout), "ERKStepSetStopTime");
       evolve(tout, ARK_NORMAL);
     }
     std::memcpy(y, y_.data(), sizeof(double) * sys_.size());
@@ -61,7 +67,7 @@ class ArkodeErk : public Integrator {
     if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
   }
 
-  double fixedStep() const override { return fixed_ ? settings_.fixedStep : 0.0; }
+  double fixedStep() const override { return fixed_ ? step_ : 0.0; }
 
   IntegratorStats stats() const override {
     IntegratorStats s;
@@ -93,8 +99,10 @@ class ArkodeErk : public Integrator {
 
   static void check(int flag, const char* what) { checkFlag(flag, what); }
   OdeSystem& sys_;
-  IntegratorSettings settings_;
+  AdaptiveOptions adaptive_;
+  ErkOptions erk_;
   bool fixed_;
+  double step_;       // fixed step: the step; 0 for the adaptive method
   SundialsContext ctx_;
   SerialVector y_, atol_;
   CallbackState cb_;
@@ -106,8 +114,9 @@ class ArkodeErk : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const IntegratorSettings& s, bool fixedStep) {
-  return std::make_unique<ArkodeErk>(sys, s, fixedStep);
+std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const AdaptiveOptions& adaptive, const ErkOptions& erk,
+                                          const FixedStepOptions* fixed) {
+  return std::make_unique<ArkodeErk>(sys, adaptive, erk, fixed);
 }
 
 }  // namespace chaindrive

@@ -32,8 +32,8 @@ extern "C" int cvodeJacobian(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix J,
 
 class CvodeBdf : public Integrator {
  public:
-  CvodeBdf(OdeSystem& sys, const IntegratorSettings& s, bool klu)
-      : sys_(sys), settings_(s), klu_(klu), y_(sys.size(), ctx_.ctx), atol_(sys.size(), ctx_.ctx) {
+  CvodeBdf(OdeSystem& sys, const AdaptiveOptions& adaptive, const BdfOptions& bdf, bool klu)
+      : sys_(sys), adaptive_(adaptive), bdf_(bdf), klu_(klu), y_(sys.size(), ctx_.ctx), atol_(sys.size(), ctx_.ctx) {
     cb_.sys = &sys;
     static_assert(sizeof(sunindextype) == sizeof(int64_t), "SUNDIALS index type must be 64 bit");
     mem_ = CVodeCreate(CV_BDF, ctx_.ctx);
@@ -56,8 +56,8 @@ class CvodeBdf : public Integrator {
       check(CVodeInit(mem_, chaindriveRhs, t0, y_.v), "CVodeInit");
       check(CVodeSetUserData(mem_, &cb_), "CVodeSetUserData");
       check(CVodeSetErrHandlerFn(mem_, chaindriveErrHandler, &cb_), "CVodeSetErrHandlerFn");
-      fillAbsoluteTolerances(sys_, settings_.rtol, atol_.v);
-      check(CVodeSVtolerances(mem_, settings_.rtol, atol_.v), "CVodeSVtolerances");
+      fillAbsoluteTolerances(sys_, adaptive_.rtol, atol_.v);
+      check(CVodeSVtolerances(mem_, adaptive_.rtol, atol_.v), "CVodeSVtolerances");
       if (klu_) {
         if (!sys_.hasJacobian()) throw std::invalid_argument("cvode-bdf-klu needs a system with a sparse Jacobian");
         A_ = SUNSparseMatrix(sys_.size(), sys_.size(), sys_.jacobianNonzeros(), CSC_MAT, ctx_.ctx);
@@ -72,9 +72,9 @@ class CvodeBdf : public Integrator {
         if (!A_ || !ls_) throw std::runtime_error("cannot create the band solver");
         check(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver");
       }
-      check(CVodeSetMaxNumSteps(mem_, settings_.maxStepsPerOutput), "CVodeSetMaxNumSteps");
-      if (settings_.minStep > 0.0) check(CVodeSetMinStep(mem_, settings_.minStep), "CVodeSetMinStep");
-      if (settings_.maxStep > 0.0) check(CVodeSetMaxStep(mem_, settings_.maxStep), "CVodeSetMaxStep");
+      check(CVodeSetMaxNumSteps(mem_, adaptive_.maxStepsPerOutput), "CVodeSetMaxNumSteps");
+      if (adaptive_.minStep > 0.0) check(CVodeSetMinStep(mem_, adaptive_.minStep), "CVodeSetMinStep");
+      if (adaptive_.maxStep > 0.0) check(CVodeSetMaxStep(mem_, adaptive_.maxStep), "CVodeSetMaxStep");
       check(CVodeSetStabLimDet(mem_, SUNTRUE), "CVodeSetStabLimDet");
       initialized_ = true;
     } else {
@@ -84,7 +84,7 @@ class CvodeBdf : public Integrator {
   }
 
   void advance(double tout, double* y) override {
-    if (settings_.stopAtOutputs) check(CVodeSetStopTime(mem_, tout), "CVodeSetStopTime");
+    if (adaptive_.stopAtOutputs) check(CVodeSetStopTime(mem_, tout), "CVodeSetStopTime");
     double t = t_;
     const int flag = CVode(mem_, tout, y_.v, &t, CV_NORMAL);
     if (flag < 0) {
@@ -124,7 +124,7 @@ class CvodeBdf : public Integrator {
     if (CVodeGetNumSteps(mem_, &steps) != 0 || CVodeGetNumNonlinSolvConvFails(mem_, &fails) != 0) return;
     const long ds = steps - windowSteps_, df = fails - windowFails_;
     if (ds < 200) return;
-    if (static_cast<double>(df) > settings_.maxConvergenceFailureRatio * static_cast<double>(ds)) {
+    if (static_cast<double>(df) > bdf_.maxConvergenceFailureRatio * static_cast<double>(ds)) {
       double h = 0.0;
       CVodeGetLastStep(mem_, &h);
       char buf[200];
@@ -139,7 +139,8 @@ class CvodeBdf : public Integrator {
   }
   static void check(int flag, const char* what) { checkFlag(flag, what); }
   OdeSystem& sys_;
-  IntegratorSettings settings_;
+  AdaptiveOptions adaptive_;
+  BdfOptions bdf_;
   bool klu_;
   SundialsContext ctx_;
   SerialVector y_, atol_;
@@ -155,8 +156,9 @@ class CvodeBdf : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const IntegratorSettings& s, bool klu) {
-  return std::make_unique<CvodeBdf>(sys, s, klu);
+std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const AdaptiveOptions& adaptive, const BdfOptions& bdf,
+                                         bool klu) {
+  return std::make_unique<CvodeBdf>(sys, adaptive, bdf, klu);
 }
 
 }  // namespace chaindrive

@@ -17,7 +17,7 @@ namespace {
 
 class FixedVerlet : public Integrator {
  public:
-  FixedVerlet(OdeSystem& sys, const IntegratorSettings& s) : sys_(sys) {
+  FixedVerlet(OdeSystem& sys, const FixedStepOptions& s) : sys_(sys) {
     const int n = sys.size();
     y_.assign(n, 0.0);
     f_.assign(n, 0.0);
@@ -28,8 +28,8 @@ class FixedVerlet : public Integrator {
       else if (sys.isVelocity(i)) velocities_.push_back(i);
       else others_.push_back(i);
     }
-    if (!(s.fixedStep > 0.0)) throw std::invalid_argument("fixed-verlet needs a positive fixed step");
-    grid_.unit = s.fixedStep;
+    if (!(s.step > 0.0)) throw std::invalid_argument("fixed-verlet needs a positive fixed step");
+    grid_.unit = s.step;
   }
   std::string name() const override { return "fixed-verlet"; }
 
@@ -89,23 +89,8 @@ class FixedVerlet : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const IntegratorSettings& s) {
+std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const FixedStepOptions& s) {
   return std::make_unique<FixedVerlet>(sys, s);
-}
-
-std::vector<std::string> integratorNames() {
-  return {"cvode-bdf-klu", "cvode-bdf-band", "arkode-erk", "arkode-erk-fixed", "fixed-verlet"};
-}
-
-std::unique_ptr<Integrator> makeIntegrator(OdeSystem& sys, const IntegratorSettings& s) {
-  if (s.method == "cvode-bdf-klu") return makeCvodeBdf(sys, s, true);
-  if (s.method == "cvode-bdf-band") return makeCvodeBdf(sys, s, false);
-  if (s.method == "arkode-erk") return makeArkodeErk(sys, s, false);
-  if (s.method == "arkode-erk-fixed") return makeArkodeErk(sys, s, true);
-  if (s.method == "fixed-verlet") return makeFixedVerlet(sys, s);
-  std::string known;
-  for (const auto& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("integrator '" + s.method + "' is unknown; known: " + known);
 }
 
 }  // namespace chaindrive

@@ -7,8 +7,12 @@
 
 namespace chaindrive {
 
-std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const IntegratorSettings& s, bool klu);
-std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const IntegratorSettings& s, bool fixedStep);
-std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const IntegratorSettings& s);
+std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const AdaptiveOptions& adaptive, const BdfOptions& bdf,
+                                         bool klu);
+/// `fixed` null: adaptive; otherwise at that fixed step (with the adaptive options' tolerances,
+/// step limits and step count).
+std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const AdaptiveOptions& adaptive, const ErkOptions& erk,
+                                          const FixedStepOptions* fixed);
+std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const FixedStepOptions& fixed);
 
 }  // namespace chaindrive

@@ -40,24 +40,56 @@ class OdeSystem {
   virtual const Failure& lastError() const = 0;
 };
 
-struct IntegratorSettings {
-  std::string method = "arkode-erk";  // see integratorNames()
-  double rtol = 1e-5;                 // adaptive methods
-  double fixedStep = 2e-6;            // fixed-step methods: the step, exactly [s]
-  double maxStep = 0.0;               // adaptive: 0 = unlimited
-  std::string erkTable = "ARKODE_DORMAND_PRINCE_7_4_5";
-  bool stopAtOutputs = false;         // never step past an output time (co-simulation)
+/// Step-size control of the adaptive methods (arkode-erk, cvode-bdf-klu, cvode-bdf-band; rtol
+/// and maxStep also of the event-driven method).
+struct AdaptiveOptions {
+  double rtol = 1e-5;
+  double maxStep = 0.0;               // 0 = unlimited
+  double minStep = 1e-10;             // a step size below this is a step-size collapse [s]
   long maxStepsPerOutput = 5000000;
-  double minStep = 1e-10;             // adaptive: a step size below this is a step-size collapse [s]
-  double maxConvergenceFailureRatio = 0.5;  // BDF: more Newton convergence failures per step (over
-                                            // any 200 steps) is a Newton failure
-  // rigid-contact methods
-  double reboundThreshold = 0.05;     // [m/s] event driven: slower rebounds close the contact
-  double maxEventsPerSecond = 2e5;    // event driven: a higher rate is a runaway-event failure
-  double gapTolerance = 1e-8;         // [m] rigid contacts: closed within this gap (time stepping:
-                                      // active below it; event driven: open beyond it)
+  bool stopAtOutputs = false;         // never step past an output time (co-simulation)
+};
+
+/// The fixed-step methods (fixed-verlet, arkode-erk-fixed; time stepping too).
+struct FixedStepOptions {
+  double step = 2e-6;                 // the step, exactly [s]
+};
+
+/// arkode-erk and arkode-erk-fixed.
+struct ErkOptions {
+  std::string table = "ARKODE_DORMAND_PRINCE_7_4_5";
+};
+
+/// cvode-bdf-klu and cvode-bdf-band.
+struct BdfOptions {
+  double maxConvergenceFailureRatio = 0.5;  // more Newton convergence failures per step (over any
+                                            // 200 steps) is a Newton failure
+};
+
+/// The rigid-contact methods on a drive (time stepping and event driven).
+struct RigidContactOptions {
+  double gapTolerance = 1e-8;         // [m] closed within this gap (time stepping: active below
+                                      // it; event driven: open beyond it)
   std::string recordLcpDirectory;     // write the LCPs solved (Siconos format) into this directory
   int recordLcpCount = 0;             // ... the first this many
+};
+
+/// The event-driven method on a drive.
+struct EventDrivenOptions {
+  double reboundThreshold = 0.05;     // [m/s] slower rebounds close the contact
+  double maxEventsPerSecond = 2e5;    // a higher rate is a runaway-event failure
+};
+
+/// The method by name and the options of every method; each method is built from its own
+/// groups only (makeIntegrator, RigidIntegrator).
+struct IntegratorSettings {
+  std::string method = "arkode-erk";  // see integratorNames()
+  AdaptiveOptions adaptive;
+  FixedStepOptions fixed;
+  ErkOptions erk;
+  BdfOptions bdf;
+  RigidContactOptions rigid;
+  EventDrivenOptions eventDriven;
 };
 
 struct IntegratorStats {

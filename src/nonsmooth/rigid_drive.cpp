@@ -217,24 +217,24 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
   v_.assign(sys_->size(), 0.0);
   if (method == "time-stepping") {
     ns::MoreauJeanSettings ms;
-    ms.step = s.fixedStep;
-    fixedStep_ = s.fixedStep;
-    ms.gapTolerance = s.gapTolerance;
-    ms.recordLcpDirectory = s.recordLcpDirectory;
-    ms.recordLcpCount = s.recordLcpCount;
+    ms.step = s.fixed.step;
+    fixedStep_ = s.fixed.step;
+    ms.gapTolerance = s.rigid.gapTolerance;
+    ms.recordLcpDirectory = s.rigid.recordLcpDirectory;
+    ms.recordLcpCount = s.rigid.recordLcpCount;
     ns_ = std::make_unique<ns::MoreauJean>(*sys_, ms);
   } else if (method == "event-driven") {
     ns::EventDrivenSettings es;
-    es.rtol = s.rtol;
-    es.atolPosition = s.rtol * 1e-3;
-    es.atolVelocity = s.rtol;
-    es.maxStep = s.maxStep;
+    es.rtol = s.adaptive.rtol;
+    es.atolPosition = s.adaptive.rtol * 1e-3;
+    es.atolVelocity = s.adaptive.rtol;
+    es.maxStep = s.adaptive.maxStep;
     es.stabilization = 2e4;
-    es.reboundThreshold = s.reboundThreshold;
-    es.maxEventsPerSecond = s.maxEventsPerSecond;
-    es.gapTolerance = s.gapTolerance;
-    es.recordLcpDirectory = s.recordLcpDirectory;
-    es.recordLcpCount = s.recordLcpCount;
+    es.reboundThreshold = s.eventDriven.reboundThreshold;
+    es.maxEventsPerSecond = s.eventDriven.maxEventsPerSecond;
+    es.gapTolerance = s.rigid.gapTolerance;
+    es.recordLcpDirectory = s.rigid.recordLcpDirectory;
+    es.recordLcpCount = s.rigid.recordLcpCount;
     ns_ = std::make_unique<ns::EventDriven>(*sys_, es);
   } else {
     throw std::invalid_argument("contact method '" + method + "' is unknown; allowed: compliant, event-driven, time-stepping");

@@ -18,8 +18,9 @@
 namespace chaindrive {
 
 struct SimulationOptions {
-  IntegratorSettings integrator;      // compliant contacts: the integrator; rigid: fixedStep (time
-                                      // stepping) or rtol (event driven)
+  IntegratorSettings integrator;      // compliant contacts: the integrator by name; rigid contacts:
+                                      // fixed.step and rigid (time stepping), adaptive.rtol and
+                                      // maxStep, rigid and eventDriven (event driven)
   std::string contactMethod;          // "", "compliant", "event-driven", "time-stepping" ("": the drive's)
   std::string jointModel;             // "", "journal-bearing", "ideal" ("": the drive's)
   PreloadOptions preload;

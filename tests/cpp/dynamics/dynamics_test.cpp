@@ -64,8 +64,8 @@ TEST(Energy, ConservedAndDriftShrinksWithTheStep) {
   const double tEnd = 2.0 * 2.0 * kPi / 200.0 * 1.5;  // three crank revolutions at 200 rad/s
   IntegratorSettings coarse, fine;
   coarse.method = fine.method = "fixed-verlet";
-  coarse.fixedStep = 2e-6;
-  fine.fixedStep = 1e-6;
+  coarse.fixed.step = 2e-6;
+  fine.fixed.step = 1e-6;
   double ek = 0.0;
   const double dCoarse = energyDrift(m, coarse, tEnd, ek);
   const double dFine = energyDrift(m, fine, tEnd, ek);
@@ -81,8 +81,8 @@ TEST(Energy, AdaptiveDriftShrinksWithTolerance) {
   const double tEnd = 0.01;
   IntegratorSettings loose, tight;
   loose.method = tight.method = "arkode-erk";
-  loose.rtol = 1e-5;
-  tight.rtol = 1e-7;
+  loose.adaptive.rtol = 1e-5;
+  tight.adaptive.rtol = 1e-7;
   double ek = 0.0;
   const double dLoose = energyDrift(m, loose, tEnd, ek);
   const double dTight = energyDrift(m, tight, tEnd, ek);
@@ -105,7 +105,7 @@ TEST(Balance, TightMinusSlackEqualsCamTorquesOverPitchRadius) {
   in->setLoad(m->rotorIndex("camshaftExhaust"), tauE);
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
-  opt.integrator.fixedStep = 2.5e-6;
+  opt.integrator.fixed.step = 2.5e-6;
   Simulation sim(m, opt, std::move(in));
   sim.start(0.0);
   const double rCam = m->sprockets[m->rotors[m->rotorIndex("camshaftIntake")].element].gap.pitchRadius;
@@ -139,7 +139,7 @@ TEST(Polygon, CamshaftSpeedRipplesAtTheMeshingFrequency) {
   auto in = std::make_unique<HarmonicInputs>(*m, w);
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
-  opt.integrator.fixedStep = 8e-7;
+  opt.integrator.fixed.step = 8e-7;
   Simulation sim(m, opt, std::move(in));
   sim.start(0.0);
   const double t0 = 0.01, span = 0.1;  // 42 meshing periods, resolution 10 Hz

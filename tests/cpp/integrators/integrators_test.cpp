@@ -19,8 +19,8 @@ std::vector<double> series(const std::string& method, double rtolOrStep, double 
   auto m = defaultModel();
   SimulationOptions opt;
   opt.integrator.method = method;
-  if (method.rfind("fixed", 0) == 0 || method == "arkode-erk-fixed") opt.integrator.fixedStep = rtolOrStep;
-  else opt.integrator.rtol = rtolOrStep;
+  if (method.rfind("fixed", 0) == 0 || method == "arkode-erk-fixed") opt.integrator.fixed.step = rtolOrStep;
+  else opt.integrator.adaptive.rtol = rtolOrStep;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   std::vector<double> out;
@@ -59,7 +59,7 @@ TEST(Integrators, BlowUpIsDetectedAndReported) {
   auto m = defaultModel();
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
-  opt.integrator.fixedStep = 8e-6;
+  opt.integrator.fixed.step = 8e-6;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   try {
@@ -82,8 +82,8 @@ TEST(Integrators, SolverFailureCarriesTheFlagAndTime) {
   auto m = defaultModel();
   SimulationOptions opt;
   opt.integrator.method = "cvode-bdf-klu";
-  opt.integrator.rtol = 1e-6;
-  opt.integrator.maxStepsPerOutput = 20;
+  opt.integrator.adaptive.rtol = 1e-6;
+  opt.integrator.adaptive.maxStepsPerOutput = 20;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   try {
@@ -155,7 +155,7 @@ TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
   auto m = defaultModel();
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
-  opt.integrator.fixedStep = 2.5e-6;
+  opt.integrator.fixed.step = 2.5e-6;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   sim.restart(0.0);

@@ -18,7 +18,7 @@ std::vector<double> run(const std::string& method, const std::string& joints, do
   SimulationOptions opt;
   opt.contactMethod = method;
   opt.jointModel = joints;
-  opt.integrator.fixedStep = step;
+  opt.integrator.fixed.step = step;
   auto sim = std::make_unique<Simulation>(m, opt, constantLoads(*m, 3000.0));
   sim->start(0.0);
   std::vector<double> out;
@@ -68,8 +68,8 @@ TEST(RigidDrive, EventDrivenReportsTheEventStorm) {
   auto m = defaultModel();
   SimulationOptions opt;
   opt.contactMethod = "event-driven";
-  opt.integrator.rtol = 1e-4;
-  opt.integrator.maxEventsPerSecond = 1e5;
+  opt.integrator.adaptive.rtol = 1e-4;
+  opt.integrator.eventDriven.maxEventsPerSecond = 1e5;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   try {

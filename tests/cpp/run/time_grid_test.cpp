@@ -82,7 +82,7 @@ std::vector<double> stateAfter(const std::string& method, double step, TimeForm 
   auto m = defaultModel();
   SimulationOptions opt;
   opt.integrator.method = method;
-  opt.integrator.fixedStep = step;
+  opt.integrator.fixed.step = step;
   auto in = std::make_unique<HarmonicInputs>(*m, 3000.0 * 2.0 * kPi / 60.0);
   in->addOrder({2.0, 0.01, 0.0});
   Simulation sim(m, opt, std::move(in));
@@ -114,7 +114,7 @@ TEST(TimeGrid, SimulationCarriesTheRemainderOfOffGridRequests) {
   auto m = defaultModel();
   SimulationOptions opt;
   opt.integrator.method = "fixed-verlet";
-  opt.integrator.fixedStep = 2.5e-6;
+  opt.integrator.fixed.step = 2.5e-6;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.25);
   EXPECT_EQ(sim.grid().unit, 2.5e-6);
