@@ -10,6 +10,8 @@
 
 namespace chaindrive {
 
+// Every work array sized once here: the contacts for every link against every sprocket and
+// guide face (the most detectContacts can find), so that no evaluation allocates.
 Data::Data(const Model& m) {
   inputs.loadTorque.assign(m.rotors.size(), 0.0);
   links.resize(m.chain.links);
@@ -24,6 +26,7 @@ Data::Data(const Model& m) {
   gen.assign(m.nGen, 0.0);
 }
 
+// Stages 1-5 of dynamics.h, the generalized forces summed into d.gen and the powers kept.
 void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t, const double* y) {
   ++d.rhsEvaluations;
   in.evaluate(t, d.inputs);
@@ -44,6 +47,7 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
 
 void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, const double* y, double* ydot) {
   generalizedForces(m, d, in, t, y);
+  // links: positions move with their velocities, velocities with force over mass (diagonal)
   const int n = m.chain.links;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
   for (int i = 0; i < n; ++i) {
@@ -57,6 +61,7 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
     o[4] = g[1] * invM;
     o[5] = g[2] * invJ;
   }
+  // rotors: the driven one follows the crankshaft input, the free ones their torque over inertia
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
     if (ro.prescribed) {
@@ -66,6 +71,7 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
       ydot[ro.stateRate] = d.gen[m.rotorGen(static_cast<int>(r))] / ro.inertia;
     }
   }
+  // the energy accumulators integrate the powers of this evaluation
   ydot[m.stateInputWork] = d.powerInput;
   ydot[m.stateDissipated] = d.powerDissipated;
 }
@@ -79,6 +85,7 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
   }
   for (const RotorModel& r : m.rotors)
     if (!r.prescribed) e.kinetic += 0.5 * r.inertia * y[r.stateRate] * y[r.stateRate];
+  // elastic: joints, contact penetrations (the Hertz-type law integrated), tensioner and gravity
   e.elastic = d.jointForces ? jointEnergy(m, d) : 0.0;
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& c = d.contacts[i];

@@ -24,6 +24,8 @@ double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
 
 void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
                     Outputs& out, const RigidForces* rigid) {
+  // the smooth forces at this state; rigid contacts and ideal joints carry the forces of the
+  // method's last step instead of a force law
   d.compliantContacts = rigid == nullptr;
   d.jointForces = rigid == nullptr || rigid->joints == nullptr;
   generalizedForces(m, d, in, t, y);
@@ -35,6 +37,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
       addContactGen(m, c, d.gen.data());
     }
   }
+  // ideal joints: the constraint forces, their tension along the links' mean axis
   if (rigid && rigid->joints && static_cast<int>(rigid->joints->size()) == 2 * m.chain.links) {
     const int n = m.chain.links;
     for (int j = 0; j < n; ++j) {
@@ -46,6 +49,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
       js.deformation = norm(d.links[j].front - d.links[(j + 1) % n].rear);
     }
   }
+  // rotors: angles from their start, rates and the chain's torque on them, in the output sense
   const std::vector<double>& sign = m.rotorOutputSign;
   const std::size_t nr = m.rotors.size();
   out.time = t;
@@ -64,12 +68,14 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
     out.rotorRate[r] = sign[r] * d.rotorRate[r];
     out.rotorTorque[r] *= sign[r];
   }
+  // tensioner and span forces
   out.crankTorque = m.drivenRotor >= 0 ? out.rotorTorque[m.drivenRotor] : 0.0;
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;
   out.tensionerRate = d.tensionerRate;
   out.tightSpanForce = spanForce(m, d, m.tightSpan);
   out.slackSpanForce = spanForce(m, d, m.slackSpan);
+  // the monitored link: mean tension of its two joints, its position and its contact forces
   const int n = m.chain.links;
   const int L = (monitoredLink >= 0 && monitoredLink < n) ? monitoredLink : m.monitoredLink;
   const LinkKin& lk = d.links[L];
@@ -84,6 +90,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
     out.linkNormalForce += c.fN;
     (c.kind == ContactPoint::Kind::RollerSprocket ? out.linkSprocketForce : out.linkGuideForce) += c.fN;
   }
+  // energy balance, contacts carrying force, the largest joint deformation
   out.energy = energyTerms(m, d, y);
   out.contacts = 0;
   for (int i = 0; i < d.nContacts; ++i) out.contacts += d.contacts[i].fN > 0.0 ? 1 : 0;
