@@ -41,7 +41,8 @@ setup_python() {
     echo "== creating the Python environment $VENV"
     python3 -m venv "$VENV"
   fi
-  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -r harness/requirements.txt
+  # the harness as a package (pyproject.toml), editable: harness/ is used in place
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]"
 }
 
 build() {
@@ -87,7 +88,7 @@ case "${1:-}" in
   main)
     shift
     setup
-    "$VENV/bin/python" -m harness.main "$@"
+    "$VENV/bin/python" -m harness run "$@"
     ;;
   test)
     shift
@@ -101,7 +102,7 @@ case "${1:-}" in
     fi
     ;;
   *)
-    echo "usage: ./run.sh main [options of python -m harness.main] | ./run.sh test" >&2
+    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test" >&2
     exit 2
     ;;
 esac

@@ -8,7 +8,7 @@ confidence half-width.
 Cycles: the engine cycles of the record start where the crankshaft angle passes a multiple of
 720 deg (the tables' origin, firing TDC of cylinder 1); the first cycles, the run-in (the start
 transient and the creep of the tension guide from the static to the dynamic mean, see
-harness/main.py), are discarded. Only whole cycles are counted.
+harness/job.py), are discarded. Only whole cycles are counted.
 
 Per cycle: means and peak-to-peak values over the cycle's samples; engine-order amplitudes from
 the cycle resampled at RESAMPLE points uniformly in crankshaft angle (order tracking: a cycle is

@@ -1,4 +1,7 @@
-"""Where things are: the repository, the build directory and the executables."""
+"""Where things are: the repository, the build directory and the executables.
+
+ROOT is the folder above the package: the repository, with the package installed editable
+(pip install -e ., as ./run.sh does) or used from the repository itself."""
 import os
 import pathlib
 

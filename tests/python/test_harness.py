@@ -7,7 +7,9 @@ import sys
 import numpy as np
 import pytest
 
-from harness import paths, plots, runs, tables
+from harness import paths, runs
+from harness.plots import drive_picture, plots
+from harness.tables import tables
 
 
 def test_short_run_writes_finite_outputs(tmp_path):
@@ -57,7 +59,7 @@ def test_output_step_is_rounded_to_whole_grid_steps(tmp_path):
 
 
 def test_drive_picture(tmp_path):
-    p = plots.drive_picture(tmp_path / "drive.png")
+    p = drive_picture.drive_picture(tmp_path / "drive.png")
     assert p.stat().st_size > 20000
 
 

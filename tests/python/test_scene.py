@@ -1,4 +1,5 @@
-"""Scenes through ChainDrive.fmu with the measured-torque tables (synthesized, harness/data)."""
+"""Scenes through ChainDrive.fmu with the measured-torque tables (synthesized, harness/tables/data):
+the main job (harness/job.py)."""
 import argparse
 import json
 import subprocess
@@ -7,8 +8,10 @@ import sys
 import numpy as np
 import pytest
 
-from harness import main as scene
-from harness import paths, plots, tables
+from harness import job as scene
+from harness import paths
+from harness.plots import plots
+from harness.tables import tables
 
 RPM = 2000.0
 
@@ -59,7 +62,7 @@ def test_tensioner_force_spectrum_sits_at_the_engine_orders_of_the_tables(closed
 
 
 def test_main_job_open_loop_quick(tmp_path):
-    p = subprocess.run([sys.executable, "-m", "harness.main", "--coupling", "open", "--cycles", "3", "--run-in", "1",
+    p = subprocess.run([sys.executable, "-m", "harness", "run", "--coupling", "open", "--cycles", "3", "--run-in", "1",
                         "--out", str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
     assert p.returncode == 0, p.stderr + p.stdout
     assert "tensioner.F.mean" in p.stdout and "real-time factor" in p.stdout

@@ -1,0 +1,68 @@
+"""The command line of the harness: one entry, one subcommand per job.
+
+    python -m harness run            the main job (harness/job.py)
+    python -m harness study          work-precision charts and stability map (harness/study/study.py)
+    python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
+    python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
+    python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
+    python -m harness tables         the SYNTHESIZED input tables (harness/tables/make_tables.py)
+    python -m harness design-drive   the default drive (harness/drive/design.py)
+    python -m harness picture        picture of a drive (harness/plots/drive_picture.py)
+
+`python -m harness COMMAND --help` shows a command's options. Each command's module gives its
+options (add_arguments(parser)), optionally checks and completes them (check(parser, args),
+which reports misuse with parser.error) and runs (run(args), returning the exit status or None);
+args.argv holds the command's own arguments, for the command line that reports record. Only the
+module of the command given is imported.
+"""
+import argparse
+import importlib
+import sys
+
+PROG = "python -m harness"
+
+# name: (module, one line of help)
+COMMANDS = {
+    "run": ("harness.job", "the main job: a scene through ChainDrive.fmu with the measured-torque tables"),
+    "study": ("harness.study.study", "work-precision charts on cycle statistics and the stability map"),
+    "chaos": ("harness.study.chaos.chaos", "divergence rate of twin runs per damping setting"),
+    "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),
+    "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),
+    "tables": ("harness.tables.make_tables", "generate the SYNTHESIZED camshaft-torque and crankshaft-speed tables"),
+    "design-drive": ("harness.drive.design", "design the default drive (src/drives/default_drive.json)"),
+    "picture": ("harness.plots.drive_picture", "picture of a drive at its assembled initial pose"),
+}
+
+
+def parser(command=None):
+    """The parser with every subcommand; the options of `command` only (its module imported),
+    the others with their one line of help. Returns (parser, {name: subparser})."""
+    ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0],
+                                 epilog=f"{PROG} COMMAND --help shows the options of a command")
+    sub = ap.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    subparsers = {}
+    for name, (module_name, help_line) in COMMANDS.items():
+        if name == command:
+            module = importlib.import_module(module_name)
+            sp = sub.add_parser(name, help=help_line, description=module.__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+            module.add_arguments(sp)
+            sp.set_defaults(module=module)
+        else:
+            sp = sub.add_parser(name, help=help_line, description=help_line)
+        subparsers[name] = sp
+    return ap, subparsers
+
+
+def main(argv=None):
+    """Runs the command of argv (default: the process's arguments); returns its exit status."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    command = argv[0] if argv and argv[0] in COMMANDS else None
+    ap, subparsers = parser(command)
+    args = ap.parse_args(argv)
+    args.argv = argv[1:]
+    module = args.module
+    check = getattr(module, "check", None)
+    if check is not None:
+        args = check(subparsers[command], args)
+    return module.run(args) or 0

@@ -1,0 +1,2 @@
+"""The drive: its description and assembled geometry (description) and the design of the default
+drive (design)."""

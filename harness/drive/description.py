@@ -1,0 +1,40 @@
+"""The drive description from Python: its JSON (the default drive or a file), what the
+analyses need from it, and its assembled geometry (chaindrive-info)."""
+import json
+import os
+import subprocess
+import tempfile
+
+from .. import paths
+
+DEFAULT_DRIVE = paths.ROOT / "src" / "drives" / "default_drive.json"
+
+
+def drive_json(path=None):
+    """The drive description as a dict (the default drive when path is None)."""
+    with open(path or DEFAULT_DRIVE) as f:
+        return json.load(f)
+
+
+def meshing_order(drive):
+    """The crankshaft meshing order: the number of teeth of the prescribed (crankshaft) sprocket,
+    in engine orders per crankshaft revolution."""
+    for s in drive["sprockets"]:
+        if s.get("motion") == "prescribed":
+            return int(s["teeth"])
+    raise ValueError("the drive has no prescribed sprocket")
+
+
+def geometry(drive=None):
+    """Assembled geometry of a drive, from chaindrive-info."""
+    fd, tmp = tempfile.mkstemp(suffix=".json")
+    os.close(fd)
+    try:
+        cmd = [paths.executable("chaindrive-info"), "--geometry", tmp, "--quiet"]
+        if drive:
+            cmd += ["--drive", str(drive)]
+        subprocess.run(cmd, check=True, capture_output=True, text=True)
+        with open(tmp) as f:
+            return json.load(f)
+    finally:
+        os.unlink(tmp)

@@ -1,0 +1,103 @@
+"""ChainDrive.fmu from Python: a thin wrapper around fmpy's FMU2Slave for master loops, with the
+FMU's log messages collected."""
+import functools
+import math
+
+from fmpy import calloc, extract, free, read_model_description
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+
+from .. import paths
+
+INPUTS = ("crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau")
+
+
+def fmu_path():
+    path = paths.BUILD / "ChainDrive.fmu"
+    if not path.exists():
+        raise FileNotFoundError(f"{path} not found; build first (./run.sh builds it)")
+    return path
+
+
+@functools.lru_cache(maxsize=None)
+def unpacked(path=None):
+    """(model description, unzip directory) of the FMU, extracted once per process."""
+    path = str(path or fmu_path())
+    return read_model_description(path), extract(path)
+
+
+class Slave:
+    """One FMU instance driven step by step (a co-simulation master's view)."""
+
+    def __init__(self, name="chaindrive", fmu=None, logging_on=False, parameters=None, guid=None):
+        self.md, self.unzipdir = unpacked(fmu)
+        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.type = {v.name: v.type for v in self.md.modelVariables}
+        self.outputs = [v.name for v in self.md.modelVariables if v.causality == "output"]
+        self.messages = []  # (status, category, message)
+        self._callbacks = fmi2CallbackFunctions()
+        self._logger = fmi2CallbackLoggerTYPE(self._log)
+        self._callbacks.logger = self._logger
+        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        self.slave = FMU2Slave(guid=guid or self.md.guid, unzipDirectory=self.unzipdir,
+                               modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        self.slave.instantiate(callbacks=self._callbacks, loggingOn=logging_on)
+        self.parameters = dict(parameters or {})
+        self.time = 0.0
+
+    def _log(self, component, instance, status, category, message):
+        self.messages.append((status, category.decode(), message.decode(errors="replace")))
+
+    def set(self, name, value):
+        t = self.type[name]
+        vr = [self.vr[name]]
+        if t == "Real":
+            self.slave.setReal(vr, [float(value)])
+        elif t == "Integer":
+            self.slave.setInteger(vr, [int(value)])
+        elif t == "Boolean":
+            self.slave.setBoolean(vr, [bool(value)])
+        else:
+            self.slave.setString(vr, [str(value)])
+
+    def get(self, names=None):
+        names = list(names or self.outputs)
+        reals = [n for n in names if self.type[n] == "Real"]
+        ints = [n for n in names if self.type[n] == "Integer"]
+        out = {}
+        if reals:
+            out.update(zip(reals, self.slave.getReal([self.vr[n] for n in reals])))
+        if ints:
+            out.update(zip(ints, self.slave.getInteger([self.vr[n] for n in ints])))
+        return out
+
+    def initialize(self, start_time=0.0, inputs=None, stop_time=None):
+        self.slave.setupExperiment(startTime=start_time, stopTime=stop_time)
+        for k, v in self.parameters.items():
+            self.set(k, v)
+        for k, v in (inputs or {}).items():
+            self.set(k, v)
+        self.slave.enterInitializationMode()
+        self.slave.exitInitializationMode()
+        self.time = start_time
+
+    def step(self, h, inputs=None, t=None):
+        for k, v in (inputs or {}).items():
+            self.set(k, v)
+        t = self.time if t is None else t
+        self.slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        self.time = t + h
+
+    def close(self):
+        try:
+            self.slave.terminate()
+        finally:
+            self.slave.freeInstance()
+
+    def errors(self):
+        return [m for s, c, m in self.messages if s >= 2]
+
+
+def rpm_to_rad_s(rpm):
+    return rpm * 2.0 * math.pi / 60.0
