@@ -20,7 +20,7 @@ VENV="${CHAINDRIVE_VENV:-$ROOT/.venv}"
 
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libeigen3-dev libsundials-dev libsuitesparse-dev
               nlohmann-json3-dev libgtest-dev python3 python3-venv python3-pip
-              libtbb12)  # libtbb12: the ecos co-simulation library of PyPI ecospy (tests/python/test_grid.py)
+              libtbb12)  # libtbb12: the ecos co-simulation library of PyPI ecospy (tests/python/fmu/test_grid.py)
 
 install_system_packages() {
   local missing=()

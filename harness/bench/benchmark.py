@@ -37,6 +37,9 @@ CONFIGS = [
     ("cvode-bdf-band", "rtol", 1e-4, 5e-5),
 ]
 ORDERS = (2, 4, 6, 8)
+# [s] a whole number of steps of every fixed step above (the runner rounds the output interval
+# to whole steps), so that a setting and its halved setting write the same output times
+OUTPUT_STEP = 6e-5
 
 
 def one_run(tmp, rpm, duration, inputs, integrator, option, value, timeout, tag=""):
@@ -53,7 +56,7 @@ def one_run(tmp, rpm, duration, inputs, integrator, option, value, timeout, tag=
 
 def runs_with_timeout(out, rpm, duration, inputs, integrator, kw, timeout):
     cmd = [paths.executable("chaindrive-run"), "--rpm", str(rpm), "--duration", repr(duration), "--integrator",
-           integrator, "--inputs", str(inputs), "--output-step", "2e-5", "--out", str(out), "--quiet"]
+           integrator, "--inputs", str(inputs), "--output-step", repr(OUTPUT_STEP), "--out", str(out), "--quiet"]
     for k, v in kw.items():
         cmd += [f"--{k}", repr(v)]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
