@@ -1,78 +1,32 @@
-// Lemke's method (src/lcp/lemke.*): the Siconos LCP collection with the expected results of its
-// README, Murty's exponential example, random P-matrix and positive semidefinite problems
-// against a brute-force enumeration of all complementary bases, caps and failures, planar
-// friction contact through the LCP form, determinism, no heap allocation per solve, the readers
-// and the command-line tool.
+// Lemke's method (src/lcp/lemke.*): Murty's exponential example, caps and failures, random
+// P-matrix and positive semidefinite problems against a brute-force enumeration of all
+// complementary bases, a single friction contact through the LCP form, determinism, no heap
+// allocation per solve and the readers. The problem files of tests/data are checked one by one
+// in collection_test.cpp; the command-line tool in tests/cpp/cli/chaindrive_lcp_test.cpp.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cctype>
+#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
-#include <ostream>
-#include <random>
-#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
 
 #include <Eigen/Dense>
 
 #include "lcp/lemke.h"
+#include "lcp/lcp_test_util.h"
 
 #include "allocation_counter.h"
 
 using namespace chaindrive::lcp;
+using namespace chaindrive::lcp::test;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 namespace {
-
-std::string dataPath(const std::string& name) { return std::string(CHAINDRIVE_SOURCE_DIR) + "/tests/data/lcp/" + name; }
-
-struct Outcome {
-  Result result;
-  VectorXd z;
-};
-
-Outcome solveProblem(const MatrixXd& M, const VectorXd& q, int maxPivots = -1) {
-  LemkeSolver solver;
-  Outcome o;
-  o.result = solver.solve(M, q, o.z, maxPivots);
-  return o;
-}
-
-// Murty's exponential example: M_ii = 1, M_ij = 2 (j > i), 0 below; q_i = -sum_{j=i..n} 2^j
-// (1-based). Solution 2^n e_n after 2^n - 1 pivots.
-void murty(int n, MatrixXd& M, VectorXd& q) {
-  M = MatrixXd::Zero(n, n);
-  q.resize(n);
-  for (int i = 0; i < n; ++i) {
-    M(i, i) = 1.0;
-    for (int j = i + 1; j < n; ++j) M(i, j) = 2.0;
-    double s = 0.0;
-    for (int j = i + 1; j <= n; ++j) s += std::ldexp(1.0, j);
-    q(i) = -s;
-  }
-}
-
-// A portable uniform generator (the same numbers with every standard library).
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : g_(seed) {}
-  double uniform(double a, double b) { return a + (b - a) * static_cast<double>(g_() >> 11) * 0x1.0p-53; }
-  int integer(int a, int b) { return a + static_cast<int>(g_() % static_cast<std::uint64_t>(b - a + 1)); }
-
- private:
-  std::mt19937_64 g_;
-};
 
 // Brute force over all 2^n complementary bases: z_S = -M_SS^-1 q_S, z = 0 elsewhere; a basis
 // solves the LCP if z >= 0 and w = M z + q >= 0 up to `tol` (absolute). Bases with a numerically
@@ -122,142 +76,6 @@ Enumeration enumerate(const MatrixXd& M, const VectorXd& q, double tol) {
 }
 
 }  // namespace
-
-// =============================================================================================
-// The collection: every file of tests/data/lcp with the status and solution of its README.
-
-struct CollectionCase {
-  const char* file;
-  Status status;
-  int pivots;                  // expected pivot count, -1: not checked
-  std::vector<double> z;       // expected leading entries of z (empty: not checked)
-  double zTol;                 // absolute tolerance on those entries
-};
-
-// Tolerances: exact listed values (fractions, integers) are compared to 1e-13 absolute (a few
-// hundred rounding units of O(1) data after a handful of pivots; the final basis is refactorized
-// and refined); values listed to k decimal digits are compared to half a unit in the last
-// listed digit (the rounding of the table itself). Pivot counts are those of Siconos'
-// lexicographic Lemke where the README gives them: the same pivoting rule gives the same path.
-const std::vector<CollectionCase>& collection() {
-  static const std::vector<CollectionCase> cases = {
-      {"lcp_deudeu.dat", Status::Solved, 2, {4.0 / 3.0, 7.0 / 3.0}, 1e-13},
-      {"lcp_trivial.dat", Status::Solved, -1, {1.0, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5, 1.0 / 6, 1.0 / 7, 1.0 / 8, 1.0 / 9}, 1e-13},
-      {"lcp_ortiz.dat", Status::Solved, -1, {2.0 / 3.0, 0.0, 1.0 / 3.0, 0.0}, 1e-13},
-      {"lcp_CPS_1.dat", Status::Solved, -1, {}, 0.0},  // z1 + z2 = 1, checked below
-      {"lcp_CPS_2.dat", Status::Solved, -1, {0.0, 1.0, 3.0}, 1e-13},
-      {"lcp_CPS_3.dat", Status::RayTermination, -1, {}, 0.0},
-      {"lcp_CPS_4.dat", Status::Solved, -1, {2.0, 2.0, 2.0, 92.0}, 1e-12},  // 92: 1e-13 of its size
-      {"lcp_CPS_4bis.dat", Status::Solved, -1, {3.0, 3.0, 0.0, 83.0}, 1e-12},
-      {"lcp_CPS_5.dat", Status::Solved, -1, {0.0, 1.0}, 1e-13},
-      {"lcp_mmc.dat", Status::Solved, 22, {1.4914e-4, 1.4102e-4}, 0.5e-8},           // 5 significant digits
-      {"lcp_exp_murty.dat", Status::Solved, -1, {0, 0, 0, 0, 0, 1}, 1e-13},
-      {"lcp_Pang_isolated_sol.dat", Status::Solved, -1, {1.0, 0.0, 0.0}, 1e-13},
-      {"lcp_inf_sol_perturbed.dat", Status::Solved, -1, {1.0, 0.0, 1e-4}, 1e-13},
-      {"lcp_enum_fails.dat", Status::Solved, 7, {6.4499e-5, 3.7109e-6, 0.0, 8.0163e-5}, 0.5e-9},  // 5 digits of the largest
-      {"lcp_tobenna.dat", Status::Solved, 126, {0.5422, 0.4578}, 0.5e-4},             // 4 decimals
-      {"lcp_exp_murty2.dat", Status::Solved, 63, {0, 0, 0, 0, 0, 64.0}, 1e-12},
-      {"lcp_Pang_isolated_sol_perturbed.dat", Status::RayTermination, -1, {}, 0.0},
-  };
-  return cases;
-}
-
-// gtest prints the parameter by its file name
-void PrintTo(const CollectionCase& c, std::ostream* os) { *os << c.file; }
-
-class LcpCollection : public ::testing::TestWithParam<CollectionCase> {};
-
-// Status, pivots and solution as in the README; error <= 1e-12 where solved (the exact
-// solution's error is 0; the computed one carries only rounding: seen up to 6e-14 on tobenna).
-TEST_P(LcpCollection, MatchesTheExpectedResult) {
-  const CollectionCase& c = GetParam();
-  const Problem p = readLcpFile(dataPath(c.file));
-  const Outcome o = solveProblem(p.M, p.q);
-  ASSERT_EQ(statusName(o.result.status), std::string(statusName(c.status)));
-  if (c.pivots >= 0) {
-    EXPECT_EQ(o.result.pivots, c.pivots);
-  }
-  if (c.status == Status::Solved) {
-    EXPECT_LE(o.result.error, 1e-12);
-    EXPECT_DOUBLE_EQ(o.result.error, lcpError(p.M, p.q, o.z));
-    EXPECT_GE(o.z.minCoeff(), 0.0);
-  }
-  for (std::size_t i = 0; i < c.z.size(); ++i)
-    EXPECT_NEAR(o.z(static_cast<Eigen::Index>(i)), c.z[i], c.zTol) << "z_" << i + 1;
-  RecordProperty("pivots", o.result.pivots);
-  std::printf("  %-40s %-15s pivots %4d  error %.3g\n", c.file, statusName(o.result.status), o.result.pivots,
-              o.result.error);
-}
-
-INSTANTIATE_TEST_SUITE_P(LcpSiconos, LcpCollection, ::testing::ValuesIn(collection()),
-                         [](const ::testing::TestParamInfo<CollectionCase>& param) {
-                           std::string s = param.param.file;
-                           s = s.substr(0, s.find('.'));
-                           for (char& ch : s)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return s;
-                         });
-
-// The table above covers every problem file of the collection (a new file must be added).
-TEST(LcpCollectionFiles, TableCoversEveryFile) {
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dataPath("")))
-    if (entry.path().extension() == ".dat") files.push_back(entry.path().filename().string());
-  EXPECT_EQ(files.size(), collection().size());
-  for (const auto& f : files) {
-    bool found = false;
-    for (const auto& c : collection()) found = found || f == c.file;
-    EXPECT_TRUE(found) << f << " is not in the test table";
-  }
-}
-
-// CPS_1: M = [[1, 1], [1, 1]], q = (-1, -1): every z >= 0 with z1 + z2 = 1 solves it (singular
-// M); the sum is exact up to rounding (1e-14).
-// LCPs recorded from the drive whose Delassus matrix is singular (tests/data/lcp_chain/README.md):
-// solved, with Siconos' pivot counts and an error at rounding level (Siconos: 2e-15 and 6e-16).
-TEST(LcpChain, IllConditionedDriveProblemsAreSolved) {
-  const std::pair<const char*, int> cases[] = {{"chain_ts_singular_1.dat", 91}, {"chain_ts_singular_2.dat", 75}};
-  for (const auto& [file, pivots] : cases) {
-    const Problem p = readLcpFile(std::string(CHAINDRIVE_SOURCE_DIR) + "/tests/data/lcp_chain/" + file);
-    const Outcome o = solveProblem(p.M, p.q);
-    EXPECT_EQ(statusName(o.result.status), std::string("Solved")) << file;
-    EXPECT_EQ(o.result.pivots, pivots) << file;
-    EXPECT_LE(o.result.error, 1e-12) << file;
-    EXPECT_GE(o.z.minCoeff(), 0.0) << file;
-  }
-}
-
-TEST(LcpCollectionDetails, Cps1SolutionOnTheSegment) {
-  const Problem p = readLcpFile(dataPath("lcp_CPS_1.dat"));
-  const Outcome o = solveProblem(p.M, p.q);
-  ASSERT_EQ(o.result.status, Status::Solved);
-  EXPECT_NEAR(o.z(0) + o.z(1), 1.0, 1e-14);
-  EXPECT_GE(o.z.minCoeff(), 0.0);
-  EXPECT_NE(p.comment.find("z_1 + z_2 = 1"), std::string::npos) << p.comment;
-}
-
-// CPS_3 (a bimatrix game): Lemke stops on a ray although a solution exists; the README's
-// enumerated solution (1/90, 2/45, 1/90, 2/45) does solve it (error at rounding level, 1e-15).
-TEST(LcpCollectionDetails, Cps3RayTerminationThoughASolutionExists) {
-  const Problem p = readLcpFile(dataPath("lcp_CPS_3.dat"));
-  EXPECT_EQ(solveProblem(p.M, p.q).result.status, Status::RayTermination);
-  VectorXd z(4);
-  z << 1.0 / 90, 2.0 / 45, 1.0 / 90, 2.0 / 45;
-  EXPECT_LE(lcpError(p.M, p.q, z), 1e-15);
-}
-
-// Pang perturbed: row 1 of M is (0, -1, -1) and q_1 = -1e-4, so w_1 < 0 for every z >= 0: there is
-// no solution, and the solver must not claim one (exact data check, then the status).
-TEST(LcpCollectionDetails, PangPerturbedHasNoSolutionAndIsNotSolved) {
-  const Problem p = readLcpFile(dataPath("lcp_Pang_isolated_sol_perturbed.dat"));
-  EXPECT_EQ(p.M(0, 0), 0.0);
-  EXPECT_EQ(p.M(0, 1), -1.0);
-  EXPECT_EQ(p.M(0, 2), -1.0);
-  EXPECT_EQ(p.q(0), -1e-4);
-  const Outcome o = solveProblem(p.M, p.q);
-  EXPECT_NE(o.result.status, Status::Solved);
-  EXPECT_EQ(o.result.status, Status::RayTermination);
-}
 
 // =============================================================================================
 // Murty's exponential example
@@ -564,49 +382,7 @@ TEST(LcpRandom, SemidefiniteMatricesMatchEnumeration) {
 }
 
 // =============================================================================================
-// Planar friction contact through the LCP form
-
-namespace {
-
-struct ContactSolution {
-  Result result;
-  VectorXd z, r, u;
-};
-
-ContactSolution solveFriction(const FrictionProblem& p) {
-  MatrixXd M;
-  VectorXd q;
-  frictionToLcp(p, M, q);
-  ContactSolution s;
-  LemkeSolver solver;
-  s.result = solver.solve(M, q, s.z);
-  lcpToForces(p, s.z, s.r);
-  s.u = p.W * s.r + p.q;
-  return s;
-}
-
-// The contact laws in terms of (u, r) with absolute tolerance tol: 0 <= u_N _|_ r_N >= 0,
-// |r_T| <= mu r_N, u_T = 0 when sticking, r_T = -mu r_N sign(u_T) when sliding.
-void expectCoulomb(const FrictionProblem& p, const VectorXd& r, const VectorXd& u, double tol) {
-  for (int i = 0; i < p.contacts(); ++i) {
-    const double rN = r(2 * i), rT = r(2 * i + 1), uN = u(2 * i), uT = u(2 * i + 1), mu = p.mu(i);
-    EXPECT_GE(rN, -tol) << "contact " << i;
-    EXPECT_GE(uN, -tol) << "contact " << i;
-    EXPECT_LE(std::min(std::abs(rN), std::abs(uN)), tol) << "contact " << i;
-    EXPECT_LE(std::abs(rT), mu * rN + tol) << "contact " << i;
-    if (uT > tol) {
-      EXPECT_NEAR(rT, -mu * rN, tol) << "contact " << i;
-    }
-    if (uT < -tol) {
-      EXPECT_NEAR(rT, mu * rN, tol) << "contact " << i;
-    }
-    if (std::abs(rT) < mu * rN - tol) {
-      EXPECT_NEAR(uT, 0.0, tol) << "contact " << i;
-    }
-  }
-}
-
-}  // namespace
+// Planar friction contact through the LCP form (the fc2d files: collection_test.cpp)
 
 // One contact with W = I, q = (-1, v), mu = 0.3: u = r + q, so r_N = 1 (u_N = 0); for |v| > mu
 // the contact slides against u_T = v + r_T with r_T = -mu sign(v); for |v| <= mu it sticks with
@@ -630,79 +406,6 @@ TEST(LcpFrictionContact, SingleContactSlidesAndSticks) {
 // places, so the tolerance is half a unit in the fifth decimal, 5e-6 (+1e-12 for our rounding).
 // The LCP error is at rounding level on 00000 (<= 1e-12); 00001 has a rank-deficient W (its two
 // tangent columns are nearly equal), where the README accepts Siconos' 1e-5: we require that
-// (seen: about 3e-16). The contact laws hold to 1e-12 of the data scale (|q| ~ 10).
-TEST(LcpFrictionContact, SliderCrankMatchesReferenceForces) {
-  struct Ref {
-    const char* file;
-    double r[4];
-    double errorTol;
-  };
-  const Ref refs[] = {{"fc2d/FC2D_SliderCrankLagrangian00000.dat", {0.05578, 0.00056, 0.05522, 0.00055}, 1e-12},
-                      {"fc2d/FC2D_SliderCrankLagrangian00001.dat", {0.04453, 0.00045, 0.04408, 0.00044}, 1e-5}};
-  for (const Ref& ref : refs) {
-    const FrictionProblem p = readFc2dFile(dataPath(ref.file));
-    ASSERT_EQ(p.contacts(), 2);
-    const ContactSolution s = solveFriction(p);
-    ASSERT_EQ(s.result.status, Status::Solved) << ref.file;
-    EXPECT_LE(s.result.error, ref.errorTol) << ref.file;
-    for (int k = 0; k < 4; ++k) EXPECT_NEAR(s.r(k), ref.r[k], 5e-6 + 1e-12) << ref.file << " r[" << k << "]";
-    expectCoulomb(p, s.r, s.u, 1e-12 * p.q.lpNorm<Eigen::Infinity>());
-    std::printf("  %-45s pivots %d  error %.3g  r = %.6g %.6g %.6g %.6g\n", ref.file, s.result.pivots, s.result.error,
-                s.r(0), s.r(1), s.r(2), s.r(3));
-  }
-}
-
-// FrictionContactProblem00394: q is rounding noise (|q| < 2e-15): all forces zero, to 1e-12
-// (W ~ 0.4, so forces of the size of q / W would be ~1e-15).
-TEST(LcpFrictionContact, Problem00394HasZeroForces) {
-  const FrictionProblem p = readFc2dFile(dataPath("fc2d/FrictionContactProblem00394.dat"));
-  ASSERT_EQ(p.contacts(), 6);
-  const ContactSolution s = solveFriction(p);
-  ASSERT_EQ(s.result.status, Status::Solved);
-  EXPECT_LE(s.result.error, 1e-12);
-  EXPECT_LE(s.r.lpNorm<Eigen::Infinity>(), 1e-12);
-  expectCoulomb(p, s.r, s.u, 1e-12);
-  std::printf("  00394: pivots %d  error %.3g  |r|_inf %.3g\n", s.result.pivots, s.result.error,
-              s.r.lpNorm<Eigen::Infinity>());
-}
-
-// FrictionContactProblem00374: the README lists "all zero", but the file does not allow that:
-// contacts 12..21 (1-based) have q_N = -36.7875 with W rows and columns that are diagonal
-// (decoupled from everything else), so u_N = W_NN r_N + q_N >= 0 forces r_N = 36.7875 / W_NN
-// (147..178) there; q_T = 0 gives r_T = 0. All other contacts have q_N >= -2e-15 and zero
-// forces. Checked against this closed form to 1e-12 relative to the largest force (rounding),
-// and against the contact laws directly.
-TEST(LcpFrictionContact, Problem00374MatchesTheDecoupledClosedForm) {
-  const FrictionProblem p = readFc2dFile(dataPath("fc2d/FrictionContactProblem00374.dat"));
-  ASSERT_EQ(p.contacts(), 28);
-  VectorXd rExact = VectorXd::Zero(56);
-  int loaded = 0;
-  for (int i = 0; i < 28; ++i) {
-    if (p.q(2 * i) < -1.0) {
-      // the closed form needs the contact to be decoupled: check that
-      for (int j = 0; j < 56; ++j) {
-        if (j == 2 * i || j == 2 * i + 1) continue;
-        ASSERT_EQ(p.W(2 * i, j), 0.0);
-        ASSERT_EQ(p.W(2 * i + 1, j), 0.0);
-        ASSERT_EQ(p.W(j, 2 * i), 0.0);
-        ASSERT_EQ(p.W(j, 2 * i + 1), 0.0);
-      }
-      ASSERT_EQ(p.W(2 * i, 2 * i + 1), 0.0);
-      ASSERT_EQ(p.W(2 * i + 1, 2 * i), 0.0);
-      ASSERT_EQ(p.q(2 * i + 1), 0.0);
-      rExact(2 * i) = -p.q(2 * i) / p.W(2 * i, 2 * i);
-      ++loaded;
-    }
-  }
-  EXPECT_EQ(loaded, 10);
-  const ContactSolution s = solveFriction(p);
-  ASSERT_EQ(s.result.status, Status::Solved);
-  EXPECT_LE(s.result.error, 1e-12);
-  EXPECT_LE((s.r - rExact).lpNorm<Eigen::Infinity>(), 1e-12 * rExact.lpNorm<Eigen::Infinity>());
-  expectCoulomb(p, s.r, s.u, 1e-12 * p.q.lpNorm<Eigen::Infinity>());
-  std::printf("  00374: pivots %d  error %.3g  max |r - r_exact| %.3g (max r %.6g)\n", s.result.pivots,
-              s.result.error, (s.r - rExact).lpNorm<Eigen::Infinity>(), rExact.maxCoeff());
-}
 
 // =============================================================================================
 // Determinism and allocation
@@ -732,7 +435,7 @@ TEST(LcpDeterminism, RepeatedSolvesAreBitIdentical) {
 
 // A solver sized once allocates nothing per solve for problems up to its capacity (solution
 // vectors of the right size passed in): counted through malloc/calloc/realloc while solving the
-// collection's problems of size <= 40 (including ray terminations, an iteration limit and the
+// problems of tests/data/lcp, of sizes up to 40 (including ray terminations, an iteration limit and the
 // periodic refactorizations of tobenna's 126 pivots). The counter is shown to work: a
 // std::vector and an Eigen vector allocated in the counted region and a problem beyond the
 // capacity are all counted.
@@ -740,7 +443,7 @@ TEST(LcpAllocation, NoHeapAllocationPerSolve) {
   if (!chaindrive::test::allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc and no sanitizer";
   using chaindrive::test::countAllocations;
   std::vector<Problem> problems;
-  for (const auto& c : collection()) problems.push_back(readLcpFile(dataPath(c.file)));
+  for (const auto& f : datFiles(dataPath(""))) problems.push_back(readLcpFile(dataPath(f)));
   MatrixXd murtyM;
   VectorXd murtyQ;
   murty(10, murtyM, murtyQ);
@@ -784,12 +487,6 @@ TEST(LcpAllocation, NoHeapAllocationPerSolve) {
 // Readers
 
 namespace {
-std::string writeTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "lcp_test_" + name;
-  std::ofstream(path) << text;
-  return path;
-}
-
 std::string readError(const std::string& path, bool fc2d = false) {
   try {
     if (fc2d) readFc2dFile(path);
@@ -848,106 +545,3 @@ TEST(LcpReader, ErrorsNameTheFileAndTheProblem) {
   }
 }
 
-// =============================================================================================
-// The command-line tool (build/chaindrive-lcp next to build/tests/cpp/chaindrive_tests)
-
-namespace {
-struct CliRun {
-  int code;
-  std::string out;
-};
-
-std::filesystem::path cliPath() {
-  std::error_code ec;
-  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) return {};
-  return self.parent_path().parent_path().parent_path() / "chaindrive-lcp";
-}
-
-CliRun runCli(const std::string& args) {
-  const std::string cmd = "'" + cliPath().string() + "' " + args + " 2>&1";
-  CliRun r{-1, ""};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  std::size_t got = 0;
-  while ((got = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, got);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-}  // namespace
-
-// Exit codes 0 (solved), 1 (ray, limit), 2 (bad arguments, unreadable file naming it); output:
-// status, pivots, error, z at full precision (17 significant digits).
-TEST(LcpCli, PrintsTheResultAndUsesTheExitCodes) {
-  if (!std::filesystem::exists(cliPath())) GTEST_SKIP() << "chaindrive-lcp not found at " << cliPath();
-  CliRun r = runCli("'" + dataPath("lcp_deudeu.dat") + "'");
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("status: Solved\npivots: 2\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\n1.3333333333333333\n2.3333333333333335\n"), std::string::npos) << r.out;
-
-  r = runCli("'" + dataPath("lcp_CPS_3.dat") + "'");
-  EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_NE(r.out.find("status: RayTermination"), std::string::npos) << r.out;
-
-  r = runCli("'" + dataPath("lcp_exp_murty2.dat") + "' --max-pivots 10");
-  EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_NE(r.out.find("status: IterationLimit\npivots: 10\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("chaindrive-lcp: LCP iteration limit: 10 pivots without a solution (cap 10 for n = 6; "
-                       "raise it with --max-pivots)\n"),
-            std::string::npos)
-      << r.out;
-
-  r = runCli("--fc2d '" + dataPath("fc2d/FC2D_SliderCrankLagrangian00000.dat") + "'");
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("r (r_N r_T per contact):\n0.0557794"), std::string::npos) << r.out;
-
-  r = runCli("/nonexistent/problem.dat");
-  EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("/nonexistent/problem.dat"), std::string::npos) << r.out;
-
-  r = runCli("'" + dataPath("lcp_deudeu.dat") + "' --max-pivots many");
-  EXPECT_EQ(r.code, 2) << r.out;
-  r = runCli("");
-  EXPECT_EQ(r.code, 2) << r.out;
-  r = runCli("'" + dataPath("lcp_deudeu.dat") + "' --frobnicate");
-  EXPECT_EQ(r.code, 2) << r.out;
-}
-
-namespace {
-// Murty's example of size n as a file of the Siconos dense format (integers: exact in text).
-std::string writeMurtyFile(int n) {
-  MatrixXd M;
-  VectorXd q;
-  murty(n, M, q);
-  std::ostringstream text;
-  text.precision(17);
-  text << n << "\n0\n" << n << "\n" << n << "\n" << n << " " << n << "\n";
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) text << M(i, j) << (i + 1 == n ? "\n" : " ");
-  for (int i = 0; i < n; ++i) text << q(i) << (i + 1 == n ? "\n" : " ");
-  text << "Murty's exponential example, n = " << n << "\n";
-  return writeTemp("murty" + std::to_string(n) + ".dat", text.str());
-}
-}  // namespace
-
-// The default cap on the command line: Murty n = 12 (4095 pivots) is solved; n = 15 (32767
-// pivots) stops at its cap of 22500 with exit code 1, the status and pivots on stdout and the
-// pivots and the cap on stderr.
-TEST(LcpCli, DefaultCapSolvesMurty12AndReportsACappedRun) {
-  if (!std::filesystem::exists(cliPath())) GTEST_SKIP() << "chaindrive-lcp not found at " << cliPath();
-  CliRun r = runCli("'" + writeMurtyFile(12) + "'");
-  EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("status: Solved\npivots: 4095\nerror: 0\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\n4096\n"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("iteration limit"), std::string::npos) << r.out;
-
-  r = runCli("'" + writeMurtyFile(15) + "'");
-  EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_NE(r.out.find("status: IterationLimit\npivots: 22500\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("chaindrive-lcp: LCP iteration limit: 22500 pivots without a solution (cap 22500 for "
-                       "n = 15; raise it with --max-pivots)\n"),
-            std::string::npos)
-      << r.out;
-}
