@@ -19,17 +19,16 @@ class ArkodeErk : public Integrator {
       : sys_(sys),
         adaptive_(adaptive),
         erk_(erk),
-        fixed_(fixed != nullptr),
         step_(fixed ? fixed->step : 0.0),
         y_(sys.size(), ctx_.ctx),
         atol_(sys.size(), ctx_.ctx) {
     cb_.sys = &sys;
-    if (fixed_ && !(step_ > 0.0)) throw std::invalid_argument("arkode-erk-fixed needs a positive fixed step");
+    if (fixed && !(step_ > 0.0)) throw std::invalid_argument("arkode-erk-fixed needs a positive fixed step");
   }
   ~ArkodeErk() override {
     if (mem_) ERKStepFree(&mem_);
   }
-  std::string name() const override { return fixed_ ? "arkode-erk-fixed" : "arkode-erk"; }
+  std::string name() const override { return fixed() ? "arkode-erk-fixed" : "arkode-erk"; }
   void setInitialStep(double h) override { initialStep_ = h; }
 
   void reset(double t0, const double* y0) override {
@@ -46,17 +45,17 @@ class ArkodeErk : public Integrator {
       fillAbsoluteTolerances(sys_, adaptive_.rtol, atol_.v);
       check(ERKStepSVtolerances(mem_, adaptive_.rtol, atol_.v), "ERKStepSVtolerances");
       check(ERKStepSetMaxNumSteps(mem_, adaptive_.maxStepsPerOutput), "ERKStepSetMaxNumSteps");
-      if (!fixed_ && adaptive_.minStep > 0.0) check(ERKStepSetMinStep(mem_, adaptive_.minStep), "ERKStepSetMinStep");
+      if (!fixed() && adaptive_.minStep > 0.0) check(ERKStepSetMinStep(mem_, adaptive_.minStep), "ERKStepSetMinStep");
       if (adaptive_.maxStep > 0.0) check(ERKStepSetMaxStep(mem_, adaptive_.maxStep), "ERKStepSetMaxStep");
-      if (fixed_) check(ERKStepSetFixedStep(mem_, step_), "ERKStepSetFixedStep");
+      if (fixed()) check(ERKStepSetFixedStep(mem_, step_), "ERKStepSetFixedStep");
     } else {
       check(ERKStepReset(mem_, t0, y_.v), "ERKStepReset");
     }
-    if (!fixed_) check(ERKStepSetInitStep(mem_, initialStep_), "ERKStepSetInitStep");
+    if (!fixed()) check(ERKStepSetInitStep(mem_, initialStep_), "ERKStepSetInitStep");
   }
 
   void advance(double tout, double* y) override {
-    if (fixed_) {
+    if (fixed()) {
       advanceOnGrid(tout);
     } else {
       if (adaptive_.stopAtOutputs) check(ERKStepSetStopTime(mem_, tout), "ERKStepSetStopTime");
@@ -67,7 +66,7 @@ class ArkodeErk : public Integrator {
     if (!sys_.healthy(tout, y, why)) throw IntegrationError(tout, why);
   }
 
-  double fixedStep() const override { return fixed_ ? step_ : 0.0; }
+  double fixedStep() const override { return step_; }
 
   IntegratorStats stats() const override {
     IntegratorStats s;
@@ -98,11 +97,12 @@ class ArkodeErk : public Integrator {
   }
 
   static void check(int flag, const char* what) { checkFlag(flag, what); }
+  bool fixed() const { return step_ > 0.0; }
+
   OdeSystem& sys_;
   AdaptiveOptions adaptive_;
   ErkOptions erk_;
-  bool fixed_;
-  double step_;       // fixed step: the step; 0 for the adaptive method
+  double step_;       // fixed step: the step (positive); 0 for the adaptive method
   SundialsContext ctx_;
   SerialVector y_, atol_;
   CallbackState cb_;

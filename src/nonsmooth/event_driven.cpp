@@ -403,7 +403,8 @@ void EventDriven::advance(double tout) {
   ERKStepSetStopTime(sun_->mem, tout);
   while (t_ < tout) {
     double t = t_;
-    lastFailure_ = Failure{};
+    lastFailure_.kind = FailureKind::Other;
+    lastFailure_.reason.clear();  // keeps its capacity
     const int flag = ERKStepEvolve(sun_->mem, tout, sun_->y->v, &t, ARK_ONE_STEP);
     if (flag < 0) {
       // the right-hand side's own failure (its constraint problem), else the solver's flag
