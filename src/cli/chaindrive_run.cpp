@@ -47,6 +47,8 @@ void usage() {
       "  --integrator NAME       %s (default arkode-erk)\n"
       "  --contact-method M      compliant, event-driven or time-stepping (default: the drive's)\n"
       "  --joint-model J         journal-bearing or ideal (default: the drive's)\n"
+      "  --fidelity F            link (the link-by-link model, default) or span (the span model:\n"
+      "                          rotors and spans, src/span/)\n"
       "  --rtol X                relative tolerance of adaptive integrators and of the event-driven\n"
       "                          method (default 1e-5)\n"
       "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6);\n"
@@ -128,6 +130,7 @@ const Option kOptions[] = {
   {"--integrator",        [](Arguments& a, RunArguments& r) { r.opt.integrator.method = a.value(); }},
   {"--contact-method",    [](Arguments& a, RunArguments& r) { r.opt.contactMethod = a.value(); }},
   {"--joint-model",       [](Arguments& a, RunArguments& r) { r.opt.jointModel = a.value(); }},
+  {"--fidelity",          [](Arguments& a, RunArguments& r) { r.opt.fidelity = a.value(); }},
   {"--rebound-threshold", [](Arguments& a, RunArguments& r) { r.opt.integrator.eventDriven.reboundThreshold = a.number(); }},
   {"--gap-tolerance",     [](Arguments& a, RunArguments& r) { r.opt.integrator.rigid.gapTolerance = a.number(); }},
   {"--record-lcps",       recordLcps},
@@ -191,7 +194,7 @@ double startRun(Simulation& sim, const Model& m, const RunArguments& r) {
   const double cpu0 = cpuSeconds();
   double t0 = 0.0;
   if (!r.initialState.empty()) {
-    const StateSnapshot snap = readStateFile(r.initialState, m);
+    const StateSnapshot snap = readStateFile(r.initialState, m, static_cast<int>(sim.state().size()), sim.fidelity());
     t0 = snap.time;
     sim.startFrom(t0, snap.y);
   } else {
@@ -199,7 +202,10 @@ double startRun(Simulation& sim, const Model& m, const RunArguments& r) {
   }
   const double cpuPreload = cpuSeconds() - cpu0;
   if (!r.quiet) {
-    std::printf("drive: %s (%d links, %zu rotors, %d states)\n", m.name.c_str(), m.chain.links, m.rotors.size(), m.nStates);
+    std::printf("drive: %s (%d links, %zu rotors, %s fidelity, %zu states)\n", m.name.c_str(), m.chain.links,
+                m.rotors.size(), sim.fidelity().c_str(), sim.state().size());
+    if (const span::SpanModel* sm = sim.spanModel())
+      for (const std::string& note : sm->notes) std::printf("  %s\n", note.c_str());
     if (r.initialState.empty())
       std::printf("start: %s, %.3f s CPU\n", sim.preloadReport().message.c_str(), cpuPreload);
     else
@@ -328,6 +334,7 @@ void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult&
   const IntegratorStats st = sim.integratorStats();
   nlohmann::json j;
   j["status"] = res.status == 0 ? "ok" : "failed";
+  j["fidelity"] = sim.fidelity();
   j["contactMethod"] = sim.contactMethod();
   j["method"] = methodName(sim, r);
   j["rpm"] = r.rpm;
@@ -373,7 +380,8 @@ int run(const RunArguments& r) {
   printReport(sim, r, res, w0);
   if (!r.summaryPath.empty()) writeSummary(sim, r, res, t0, tEnd);
   // a run that reached its end: the state to continue from, the final forces
-  if (res.status == 0 && !r.saveState.empty()) writeStateFile(r.saveState, m, StateSnapshot{sim.time(), sim.state()});
+  if (res.status == 0 && !r.saveState.empty())
+    writeStateFile(r.saveState, m, StateSnapshot{sim.time(), sim.state()}, sim.fidelity());
   if (res.status == 0 && !r.quiet) {
     const Outputs& o = sim.outputs();
     std::printf("final: tensioner %.2f N, tight span %.2f N, slack span %.2f N, crank torque %.3f N m, contacts %d\n",

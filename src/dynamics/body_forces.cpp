@@ -33,41 +33,48 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
       d.gen[3 * i] += w.x;
       d.gen[3 * i + 1] += w.y;
     }
+  TensionerResult t;
+  evaluateRotorForces(m, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.gen.data() + m.rotorGen(0), t,
+                      powerInput, powerDissipated);
+  if (m.tensioner.present) {
+    d.tensionerForce = t.force;
+    d.tensionerStroke = t.stroke;
+    d.tensionerRate = t.rate;
+  }
+}
+
+void evaluateRotorForces(const Model& m, const InputValues& in, const double* cosA, const double* sinA,
+                         const double* rate, double* rotorGen, TensionerResult& tensioner, double& powerInput,
+                         double& powerDissipated) {
   // guides: pivot friction and weight
   for (const GuideModel& g : m.guides) {
     if (g.rotor < 0) continue;
-    const int gi = m.rotorGen(g.rotor);
-    const double rate = d.rotorRate[g.rotor];
-    d.gen[gi] -= g.pivotDamping * rate;
-    powerDissipated += g.pivotDamping * rate * rate;
+    const double w = rate[g.rotor];
+    rotorGen[g.rotor] -= g.pivotDamping * w;
+    powerDissipated += g.pivotDamping * w * w;
     if (g.mass > 0.0) {
-      const Vec2 arm = rotate(g.centerOfMass - g.pivot, d.rotorCos[g.rotor], d.rotorSin[g.rotor]);
-      d.gen[gi] += cross(arm, g.mass * m.gravity);
+      const Vec2 arm = rotate(g.centerOfMass - g.pivot, cosA[g.rotor], sinA[g.rotor]);
+      rotorGen[g.rotor] += cross(arm, g.mass * m.gravity);
     }
   }
   // tensioner
   if (m.tensioner.present) {
     const int r = m.tensioner.rotor;
-    const TensionerResult t =
-        tensionerForce(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r]);
-    d.gen[m.rotorGen(r)] += t.torque;
-    d.tensionerForce = t.force;
-    d.tensionerStroke = t.stroke;
-    d.tensionerRate = t.rate;
-    powerDissipated += t.power;
+    tensioner = tensionerForce(m.tensioner, m.rotors[r].axis, cosA[r], sinA[r], rate[r]);
+    rotorGen[r] += tensioner.torque;
+    powerDissipated += tensioner.power;
   }
   // load torques on free sprockets (positive opposes the running direction), drive power
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
     if (!ro.isSprocket) continue;
-    const int gi = m.rotorGen(static_cast<int>(r));
     if (ro.prescribed) {
       // the drive holds the prescribed motion against everything acting on the sprocket
-      powerInput += -d.gen[gi] * d.rotorRate[r];
+      powerInput += -rotorGen[r] * rate[r];
     } else {
-      const double tau = -m.sense * d.inputs.loadTorque[r];
-      d.gen[gi] += tau;
-      powerInput += tau * d.rotorRate[r];
+      const double tau = -m.sense * in.loadTorque[r];
+      rotorGen[r] += tau;
+      powerInput += tau * rate[r];
     }
   }
 }

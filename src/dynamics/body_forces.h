@@ -21,6 +21,13 @@ TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA,
 /// Adds the body forces to d.gen, sets the tensioner outputs; returns {input power, dissipated power}.
 void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated);
 
+/// The body forces on the rotors alone, shared by the link and span models: guide pivot friction
+/// and weight, the tensioner, load torques on free sprockets and the power of the prescribed
+/// drive. Adds to rotorGen (one entry per rotor, math sense); cosA, sinA, rate per rotor.
+void evaluateRotorForces(const Model& m, const InputValues& in, const double* cosA, const double* sinA,
+                         const double* rate, double* rotorGen, TensionerResult& tensioner, double& powerInput,
+                         double& powerDissipated);
+
 /// Potential energy of gravity (links and guide weights) and the tensioner spring.
 double bodyPotentialEnergy(const Model& m, const Data& d, double& gravityEnergy);
 

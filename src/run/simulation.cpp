@@ -5,6 +5,7 @@
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/health.h"
+#include "span/span_outputs.h"
 
 namespace chaindrive {
 
@@ -87,9 +88,19 @@ Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptio
     : model_(std::move(model)), options_(opt), inputs_(std::move(inputs)) {
   const DriveDescription& desc = model_->description;
   contactMethod_ = options_.contactMethod.empty() ? desc.contact.method : options_.contactMethod;
+  fidelity_ = options_.fidelity.empty() ? "link" : options_.fidelity;
   const std::string joints = options_.jointModel.empty() ? desc.chain.joint.model : options_.jointModel;
   if (joints != "journal-bearing" && joints != "ideal")
     throw std::invalid_argument("joint model '" + joints + "' is unknown; allowed: journal-bearing, ideal");
+  if (fidelity_ == "link") buildLinkModel(joints);
+  else if (fidelity_ == "span") buildSpanModel(joints);
+  else throw std::invalid_argument("fidelity '" + fidelity_ + "' is unknown; allowed: link, span");
+  const double step = integrator_->fixedStep();
+  grid_.unit = step > 0.0 ? step : kAdaptiveTimeQuantum;
+}
+
+// The link-by-link model with compliant or rigid contacts.
+void Simulation::buildLinkModel(const std::string& joints) {
   if (contactMethod_ == "compliant") {
     if (joints == "ideal")
       throw std::invalid_argument("ideal joints need a rigid-contact method (event-driven or time-stepping); with "
@@ -107,11 +118,25 @@ Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptio
   }
   outData_ = std::make_unique<Data>(*model_);
   y_.assign(model_->nStates, 0.0);
-  const double step = integrator_->fixedStep();
-  grid_.unit = step > 0.0 ? step : kAdaptiveTimeQuantum;
+}
+
+// The span model: no contacts (the chain is spans), its stiffness from the journal bearings.
+void Simulation::buildSpanModel(const std::string& joints) {
+  if (contactMethod_ != "compliant")
+    throw std::invalid_argument("contact method '" + contactMethod_ + "' does not apply to the span fidelity "
+                                "(its chain has spans, not contacts); use the link fidelity");
+  if (joints != "journal-bearing")
+    throw std::invalid_argument("joint model '" + joints + "' has no stiffness for the spans of the span fidelity; "
+                                "use journal-bearing joints");
+  spanModel_ = std::make_unique<span::SpanModel>(span::assembleSpanModel(*model_));
+  spanSystem_ = std::make_unique<span::SpanSystem>(*spanModel_, *inputs_, options_.health);
+  integrator_ = makeIntegrator(*spanSystem_, options_.integrator);
+  outSpanData_ = std::make_unique<span::SpanData>(*spanModel_);
+  y_.assign(spanModel_->nStates, 0.0);
 }
 
 long long Simulation::rhsEvaluations() const {
+  if (spanSystem_) return spanSystem_->data().rhsEvaluations;
   return system_ ? system_->data().rhsEvaluations : rigidIntegrator_->contactStats().rhsEvaluations;
 }
 
@@ -119,7 +144,8 @@ void Simulation::start(double t0) {
   InputValues v;
   v.loadTorque.assign(model_->rotors.size(), 0.0);
   inputs_->evaluate(t0, v);
-  y_ = initialState(*model_, v, options_.preload, preload_);
+  y_ = spanModel_ ? span::spanInitialState(*spanModel_, v, options_.preload, preload_)
+                 : initialState(*model_, v, options_.preload, preload_);
   startFrom(t0, y_);
 }
 
@@ -151,7 +177,9 @@ double Simulation::advanceTo(double t) {
 }
 
 const Outputs& Simulation::outputs() {
-  if (rigidIntegrator_) {
+  if (spanModel_) {
+    span::computeSpanOutputs(*spanModel_, *outSpanData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_);
+  } else if (rigidIntegrator_) {
     rigidIntegrator_->contactPoints(rigidContacts_);
     RigidForces rf;
     rf.contacts = &rigidContacts_;

@@ -14,10 +14,13 @@
 #include "assembly/preload.h"
 #include "nonsmooth/rigid_drive.h"
 #include "run/time_grid.h"
+#include "span/span_system.h"
 
 namespace chaindrive {
 
 struct SimulationOptions {
+  std::string fidelity;               // "", "link", "span" ("": link): the link-by-link model or the span
+                                      // model (src/span/) of the same drive
   IntegratorSettings integrator;      // compliant contacts: the integrator by name; rigid contacts:
                                       // fixed.step and rigid (time stepping), adaptive.rtol and
                                       // maxStep, rigid and eventDriven (event driven)
@@ -94,6 +97,10 @@ class Simulation {
   /// The step of a fixed-step method (compliant or time stepping); 0 for adaptive methods.
   double integratorFixedStep() const { return integrator_->fixedStep(); }
   const std::string& contactMethod() const { return contactMethod_; }
+  /// "link" or "span".
+  const std::string& fidelity() const { return fidelity_; }
+  /// The span model (nullptr in link fidelity).
+  const span::SpanModel* spanModel() const { return spanModel_.get(); }
   /// Counters of the rigid-contact methods (nullptr for compliant contacts).
   const ns::NsStats* contactStats() const { return rigidIntegrator_ ? &rigidIntegrator_->contactStats() : nullptr; }
   /// Outputs at the current state (evaluates the dynamics once more; no allocation after the first call).
@@ -104,9 +111,13 @@ class Simulation {
   SimulationOptions options_;
   std::unique_ptr<InputSignal> inputs_;
   std::string contactMethod_;
+  std::string fidelity_;
   std::unique_ptr<DriveSystem> system_;              // compliant contacts
   std::shared_ptr<RigidContactDrive> rigid_;         // rigid contacts
   RigidIntegrator* rigidIntegrator_ = nullptr;       // owned by integrator_
+  std::unique_ptr<span::SpanModel> spanModel_;       // span fidelity
+  std::unique_ptr<span::SpanSystem> spanSystem_;
+  std::unique_ptr<span::SpanData> outSpanData_;
   std::unique_ptr<Integrator> integrator_;
   std::vector<ContactPoint> rigidContacts_;
   std::unique_ptr<Data> outData_;
@@ -115,6 +126,9 @@ class Simulation {
   long long k_ = 0;  // grid index of the state y_
   PreloadReport preload_;
   Outputs out_;
+
+  void buildLinkModel(const std::string& joints);
+  void buildSpanModel(const std::string& joints);
 };
 
 }  // namespace chaindrive

@@ -33,12 +33,13 @@ double fromHex(const std::string& path, const std::string& field, const json& j)
 
 }  // namespace
 
-void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s) {
+void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s, const std::string& fidelity) {
   json j;
   j["schema"] = "chaindrive.state/1";
   j["drive"] = m.name;
+  if (fidelity != "link") j["fidelity"] = fidelity;
   j["links"] = m.chain.links;
-  j["states"] = m.nStates;
+  j["states"] = s.y.size();
   j["time"] = hex(s.time);
   j["time_s"] = s.time;
   json y = json::array();
@@ -50,7 +51,7 @@ void writeStateFile(const std::string& path, const Model& m, const StateSnapshot
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-StateSnapshot readStateFile(const std::string& path, const Model& m) {
+StateSnapshot readStateFile(const std::string& path, const Model& m, int states, const std::string& fidelity) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot be opened");
   json j;
@@ -61,16 +62,20 @@ StateSnapshot readStateFile(const std::string& path, const Model& m) {
   }
   if (!j.is_object() || j.value("schema", "") != "chaindrive.state/1")
     throw std::runtime_error(path + ": not a state file (schema must be \"chaindrive.state/1\")");
-  const int links = j.value("links", -1), states = j.value("states", -1);
-  if (links != m.chain.links || states != m.nStates)
-    throw std::runtime_error(path + ": a state of another drive (" + std::to_string(links) + " links, " +
-                             std::to_string(states) + " states; this drive has " + std::to_string(m.chain.links) +
-                             " links, " + std::to_string(m.nStates) + " states)");
+  const std::string fileFidelity = j.value("fidelity", "link");
+  if (fileFidelity != fidelity)
+    throw std::runtime_error(path + ": a state of the " + fileFidelity + " fidelity; this run is of the " + fidelity +
+                             " fidelity");
+  const int fileLinks = j.value("links", -1), fileStates = j.value("states", -1);
+  if (fileLinks != m.chain.links || fileStates != states)
+    throw std::runtime_error(path + ": a state of another drive (" + std::to_string(fileLinks) + " links, " +
+                             std::to_string(fileStates) + " states; this drive has " + std::to_string(m.chain.links) +
+                             " links, " + std::to_string(states) + " states)");
   StateSnapshot s;
   s.time = fromHex(path, "time", j["time"]);
   const json& y = j["y"];
-  if (!y.is_array() || static_cast<int>(y.size()) != m.nStates)
-    throw std::runtime_error(path + ": y must be an array of " + std::to_string(m.nStates) + " values");
+  if (!y.is_array() || static_cast<int>(y.size()) != states)
+    throw std::runtime_error(path + ": y must be an array of " + std::to_string(states) + " values");
   s.y.resize(y.size());
   for (std::size_t i = 0; i < y.size(); ++i) s.y[i] = fromHex(path, "y[" + std::to_string(i) + "]", y[i]);
   return s;

@@ -16,12 +16,15 @@ struct StateSnapshot {
 };
 
 /// Writes the snapshot as JSON (schema "chaindrive.state/1") with the drive's name, number of
-/// links and of states, so that a mismatching drive is recognised on reading.
-void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s);
+/// links and of states and the fidelity ("link" or "span"; written unless "link"), so that a
+/// mismatching drive or fidelity is recognised on reading.
+void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s,
+                    const std::string& fidelity = "link");
 
-/// Reads a snapshot for drive m. Throws std::runtime_error naming the file and the problem
-/// (unreadable, not a state file, another drive: links or state count differ, a non-finite or
-/// malformed value).
-StateSnapshot readStateFile(const std::string& path, const Model& m);
+/// Reads a snapshot of `states` values for drive m in `fidelity`. Throws std::runtime_error
+/// naming the file and the problem (unreadable, not a state file, another fidelity, another
+/// drive: links or state count differ, a non-finite or malformed value).
+StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
+                            const std::string& fidelity = "link");
 
 }  // namespace chaindrive

@@ -54,7 +54,7 @@ std::string editedFile(const std::string& name, const std::function<void(json&)>
 // The message of the error readStateFile throws for `path` (empty if it throws none).
 std::string readError(const std::string& path) {
   try {
-    readStateFile(path, *defaultModel());
+    readStateFile(path, *defaultModel(), defaultModel()->nStates);
   } catch (const std::runtime_error& e) {
     return e.what();
   }
@@ -68,7 +68,7 @@ TEST(StateFile, WrittenStateReadsBackBitIdentical) {
   const StateSnapshot s = awkwardState(m);
   const std::string path = tempPath("roundtrip.json");
   writeStateFile(path, m, s);
-  const StateSnapshot back = readStateFile(path, m);
+  const StateSnapshot back = readStateFile(path, m, m.nStates);
   EXPECT_TRUE(sameBits(back.time, s.time));
   ASSERT_EQ(back.y.size(), s.y.size());
   for (std::size_t i = 0; i < s.y.size(); ++i) EXPECT_TRUE(sameBits(back.y[i], s.y[i])) << "y[" << i << "]";

@@ -1,0 +1,154 @@
+#include "span/span_dynamics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dynamics/body_forces.h"
+
+namespace chaindrive::span {
+
+SpanData::SpanData(const SpanModel& m) {
+  const std::size_t nr = m.links->rotors.size();
+  inputs.loadTorque.assign(nr, 0.0);
+  rotorAngle.assign(nr, 0.0);
+  rotorRate.assign(nr, 0.0);
+  rotorCos.assign(nr, 1.0);
+  rotorSin.assign(nr, 0.0);
+  chainTorque.assign(nr, 0.0);
+  rotorGen.assign(nr, 0.0);
+  spans.resize(m.spans.size());
+  for (std::size_t i = 0; i < m.spans.size(); ++i) spans[i].factor.assign(m.spans[i].parts.size(), 1.0);
+}
+
+namespace {
+
+// Cubic Hermite interpolation of the span length and its slope; linear for the torque
+// coefficients. Angles outside the table take its end values (the health check stops such runs).
+struct TableValue {
+  double length, slope, torqueIn, torqueOut;
+};
+
+TableValue lookUp(const GuideTable& t, double psi) {
+  const int last = static_cast<int>(t.length.size()) - 1;
+  double u = (psi - t.angle0) / t.dAngle;
+  u = std::min(std::max(u, 0.0), static_cast<double>(last));
+  const int i = std::min(static_cast<int>(u), last - 1);
+  const double f = u - i, h = t.dAngle;
+  const double h00 = (1.0 + 2.0 * f) * (1.0 - f) * (1.0 - f), h10 = f * (1.0 - f) * (1.0 - f);
+  const double h01 = f * f * (3.0 - 2.0 * f), h11 = f * f * (f - 1.0);
+  TableValue v;
+  v.length = h00 * t.length[i] + h10 * h * t.slope[i] + h01 * t.length[i + 1] + h11 * h * t.slope[i + 1];
+  const double dh00 = 6.0 * f * (f - 1.0), dh10 = (1.0 - f) * (1.0 - 3.0 * f);
+  const double dh01 = 6.0 * f * (1.0 - f), dh11 = f * (3.0 * f - 2.0);
+  v.slope = (dh00 * t.length[i] + dh01 * t.length[i + 1]) / h + dh10 * t.slope[i] + dh11 * t.slope[i + 1];
+  v.torqueIn = (1.0 - f) * t.torqueIn[i] + f * t.torqueIn[i + 1];
+  v.torqueOut = (1.0 - f) * t.torqueOut[i] + f * t.torqueOut[i + 1];
+  return v;
+}
+
+void rotorKinematics(const SpanModel& m, SpanData& d, const double* y) {
+  const Model& lm = *m.links;
+  for (std::size_t r = 0; r < lm.rotors.size(); ++r) {
+    const double a = y[m.stateAngle[r]];
+    d.rotorAngle[r] = a;
+    d.rotorCos[r] = std::cos(a);
+    d.rotorSin[r] = std::sin(a);
+    d.rotorRate[r] = lm.rotors[r].prescribed ? lm.sense * d.inputs.crankSpeed : y[m.stateRate[r]];
+  }
+}
+
+// Stretch, tension and its distribution over the guides of span i; the torques on its end
+// sprockets and on its pivoting guide; the power its damper and guide friction dissipate.
+void evaluateSpan(const SpanModel& m, SpanData& d, int i) {
+  const Model& lm = *m.links;
+  const Span& sp = m.spans[i];
+  SpanState& st = d.spans[i];
+  const double sense = lm.sense;
+  const double thA = sense * (d.rotorAngle[sp.from.rotor] - lm.rotors[sp.from.rotor].initialAngle);
+  const double thB = sense * (d.rotorAngle[sp.to.rotor] - lm.rotors[sp.to.rotor].initialAngle);
+  double rA, rB;
+  const double sA = chainPassed(sp.from, thA, rA), sB = chainPassed(sp.to, thB, rB);
+  st.speedFrom = rA * sense * d.rotorRate[sp.from.rotor];
+  st.speedTo = rB * sense * d.rotorRate[sp.to.rotor];
+  TableValue g{sp.length0, 0.0, 0.0, 0.0};
+  int guideRotor = -1;
+  if (sp.table >= 0) {
+    guideRotor = m.tables[sp.table].rotor;
+    g = lookUp(m.tables[sp.table], d.rotorAngle[guideRotor]);
+  }
+  st.stretch = g.length - sp.length0 - (sA - sB);
+  st.stretchRate = (guideRotor >= 0 ? g.slope * d.rotorRate[guideRotor] : 0.0) - (st.speedFrom - st.speedTo);
+  st.tension = sp.stiffness * st.stretch + (d.quasiStatic ? 0.0 : sp.damping * st.stretchRate);
+  // the tension above the centrifugal part grows over each guide by its capstan factor; the
+  // spring holds the length-weighted mean
+  st.speed = 0.5 * (st.speedFrom + st.speedTo);
+  st.centrifugal = m.chainDensity * st.speed * st.speed;
+  const double mu = m.guideFriction * st.speed / std::sqrt(st.speed * st.speed +
+                                                           m.frictionRegularization * m.frictionRegularization);
+  double weighted = sp.parts[0], total = sp.parts[0];
+  for (std::size_t k = 1; k < sp.parts.size(); ++k) {
+    st.factor[k] = st.factor[k - 1] * std::exp(mu * sp.wraps[k - 1]);
+    weighted += sp.parts[k] * st.factor[k];
+    total += sp.parts[k];
+  }
+  st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * total / weighted;
+  st.tensionTo = st.partTension(static_cast<int>(sp.parts.size()) - 1);
+  // sprockets: the chain pulls the leaving end forwards, the arriving end backwards
+  d.chainTorque[sp.from.rotor] += sense * st.tensionFrom * rA;
+  d.chainTorque[sp.to.rotor] -= sense * st.tensionTo * rB;
+  d.powerDissipated += d.quasiStatic ? 0.0 : sp.damping * st.stretchRate * st.stretchRate;
+  for (std::size_t k = 0; k + 1 < sp.parts.size(); ++k)
+    d.powerDissipated += (st.partTension(static_cast<int>(k) + 1) - st.partTension(static_cast<int>(k))) * st.speed;
+  if (guideRotor >= 0) {
+    const int k = sp.tableGuide;
+    const double over = st.tensionFrom - st.centrifugal;
+    d.chainTorque[guideRotor] += g.torqueIn * over * st.factor[k] + g.torqueOut * over * st.factor[k + 1];
+  }
+}
+
+}  // namespace
+
+void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y) {
+  ++d.rhsEvaluations;
+  in.evaluate(t, d.inputs);
+  rotorKinematics(m, d, y);
+  std::fill(d.chainTorque.begin(), d.chainTorque.end(), 0.0);
+  d.powerInput = d.powerDissipated = 0.0;
+  for (std::size_t i = 0; i < m.spans.size(); ++i) evaluateSpan(m, d, static_cast<int>(i));
+  d.rotorGen = d.chainTorque;  // same size: no allocation
+  TensionerResult t0;
+  evaluateRotorForces(*m.links, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(),
+                      d.rotorGen.data(), t0, d.powerInput, d.powerDissipated);
+  d.tensionerForce = t0.force;
+  d.tensionerStroke = t0.stroke;
+  d.tensionerRate = t0.rate;
+}
+
+void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y, double* ydot) {
+  evaluateSpanForces(m, d, in, t, y);
+  const Model& lm = *m.links;
+  for (std::size_t r = 0; r < lm.rotors.size(); ++r) {
+    ydot[m.stateAngle[r]] = d.rotorRate[r];
+    if (m.stateRate[r] >= 0) ydot[m.stateRate[r]] = d.rotorGen[r] / m.rotorInertia[r];
+  }
+  ydot[m.stateInputWork] = d.powerInput;
+  ydot[m.stateDissipated] = d.powerDissipated;
+}
+
+EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {
+  EnergyTerms e;
+  const Model& lm = *m.links;
+  for (std::size_t r = 0; r < lm.rotors.size(); ++r)
+    if (m.stateRate[r] >= 0) e.kinetic += 0.5 * m.rotorInertia[r] * d.rotorRate[r] * d.rotorRate[r];
+  for (std::size_t i = 0; i < m.spans.size(); ++i)
+    e.elastic += 0.5 * m.spans[i].stiffness * d.spans[i].stretch * d.spans[i].stretch;
+  if (lm.tensioner.present) {
+    const int r = lm.tensioner.rotor;
+    e.elastic += tensionerForce(lm.tensioner, lm.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r]).energy;
+  }
+  e.inputWork = y[m.stateInputWork];
+  e.dissipated = y[m.stateDissipated];
+  return e;
+}
+
+}  // namespace chaindrive::span

@@ -1,0 +1,50 @@
+// The span model's forward dynamics and its work area: rotor kinematics, span stretches and
+// tensions (spring-damper, centrifugal part, capstan over guides), the torques on sprockets and
+// pivoting guides, then the body forces shared with the link model (tensioner, guide pivots, load
+// torques: dynamics/body_forces.h) and the rotor accelerations over the lumped inertias.
+#pragma once
+
+#include <vector>
+
+#include "dynamics/data.h"
+#include "dynamics/dynamics.h"
+#include "span/span_model.h"
+
+namespace chaindrive::span {
+
+/// One span at one instant.
+struct SpanState {
+  double stretch = 0.0, stretchRate = 0.0;  // [m], [m/s]
+  double tension = 0.0;        // [N] spring-damper force (the span's mean tension)
+  double speed = 0.0;          // [m/s] chain speed, mean of the two ends' R cos(theta_rel) omega
+  double centrifugal = 0.0;    // [N] rho v^2
+  double speedFrom = 0.0, speedTo = 0.0;  // [m/s] chain speed at the leaving and arriving ends
+  std::vector<double> factor;  // (free parts) capstan factor of (T - rho v^2) relative to the first part
+  double tensionFrom = 0.0, tensionTo = 0.0;  // [N] where the chain leaves A / arrives on B
+  double partTension(int part) const { return centrifugal + (tensionFrom - centrifugal) * factor[part]; }
+};
+
+struct SpanData {
+  explicit SpanData(const SpanModel& m);
+  bool quasiStatic = false;            // the static preload: springs without damping
+  InputValues inputs;
+  std::vector<double> rotorAngle, rotorRate, rotorCos, rotorSin;  // (rotors) math sense
+  std::vector<double> chainTorque;     // (rotors) [N m] of the chain on the rotor, math sense
+  std::vector<double> rotorGen;        // (rotors) all torques, math sense
+  std::vector<SpanState> spans;
+  double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
+  double powerInput = 0.0, powerDissipated = 0.0;
+  long long rhsEvaluations = 0;
+};
+
+/// Torques at (t, y) into d.chainTorque and d.rotorGen; spans, tensioner and powers into d.
+void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y);
+
+/// ydot = f(t, y). Never allocates.
+void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y, double* ydot);
+
+/// Energy terms at y after an evaluation at y: rotor kinetic energy (with the lumped chain),
+/// span springs and tensioner, the accumulators.
+EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y);
+
+}  // namespace chaindrive::span
