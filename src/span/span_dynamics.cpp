@@ -76,7 +76,7 @@ void evaluateSpan(const SpanModel& m, SpanData& d, int i) {
     guideRotor = m.tables[sp.table].rotor;
     g = lookUp(m.tables[sp.table], d.rotorAngle[guideRotor]);
   }
-  st.stretch = g.length - sp.length0 - (sA - sB);
+  st.stretch = g.length - sp.length0 - sp.slack - (sA - sB);
   st.stretchRate = (guideRotor >= 0 ? g.slope * d.rotorRate[guideRotor] : 0.0) - (st.speedFrom - st.speedTo);
   st.tension = sp.stiffness * st.stretch + (d.quasiStatic ? 0.0 : sp.damping * st.stretchRate);
   // the tension above the centrifugal part grows over each guide by its capstan factor; the

@@ -1,5 +1,7 @@
 #include "span/span_model.h"
 
+#include "span/span_calibration.h"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -267,7 +269,7 @@ void describeSpans(SpanModel& sm) {
 
 // A table of contents: the route's spans, the chain lumped on the sprockets, the map of the
 // path, the state layout.
-SpanModel assembleSpanModel(const Model& m) {
+SpanModel assembleSpanModel(const Model& m, bool measureSlack) {
   const std::vector<RouteItem> route = routeItems(m.description);
   const int n = static_cast<int>(route.size());
   std::vector<int> sprockets;
@@ -304,6 +306,7 @@ SpanModel assembleSpanModel(const Model& m) {
   sm.monitoredStart = linkCentres(m);
   layOutState(m, sm);
   describeSpans(sm);
+  if (measureSlack) measureSeatingSlack(sm);
   return sm;
 }
 

@@ -7,7 +7,7 @@
 //
 // Kinematics of a span from sprocket A (where the chain leaves) to sprocket B (where it
 // arrives), with the tension guide's angle psi:
-//   stretch  e = l(psi) - l(psi0) - (s_A(theta_A) - s_B(theta_B))
+//   stretch  e = l(psi) - l(psi0) - slack - (s_A(theta_A) - s_B(theta_B))
 //   s(theta) = chain passed through the sprocket's tangent point when it has turned theta in the
 //              running sense: p round(u) + R sin(theta_rel), u = (theta + phase) / (2 pi / z),
 //              theta_rel = (u - round(u)) 2 pi / z, so ds/dtheta = R cos(theta_rel): the polygonal
@@ -15,6 +15,10 @@
 //              cos(pi / z)), and exactly one pitch per tooth
 //   l(psi)   = path length between fixed reference points on A and B (the tangent points at the
 //              assembled pose), from a table over the guide's angle range.
+//   slack    chain the link model holds beyond the nominal path: its rollers settle into the tooth
+//            gaps and the chain on the guides, so that its tension guide stands further out than
+//            the path of pitch circles says. Measured once per drive (span_calibration.h) from the
+//            link model's static preload and put into the span of the tension guide.
 // Forces: spring tension T = k e + c e' (a span is bilateral: it stays valid while in tension);
 // over a guide of wrap angle beta the tension above the centrifugal part rho v^2 grows by the
 // capstan factor exp(mu beta) in the running direction; the guide feels the normal and friction
@@ -58,6 +62,7 @@ struct Span {
   double damping = 0.0;       // [N s/m] joint damping / links
   double mass = 0.0;          // [kg] chain in the span
   double length0 = 0.0;       // [m] reference length at the assembled pose
+  double slack = 0.0;         // [m] chain beyond the nominal path (see the header comment)
   std::vector<double> parts;  // [m] lengths of the free parts between guides (guides + 1 parts)
   std::vector<double> wraps;  // [rad] wrap angles of the guides in the span, running order
   int table = -1;             // guide table of its pivoting guide, -1: the span holds none
@@ -85,6 +90,7 @@ struct SpanModel {
   double guideFriction = 0.0, frictionRegularization = 0.05;
   struct Probe { bool present = false; int span = -1, part = 0; } tightProbe, slackProbe;
   std::vector<double> monitoredStart;  // (links) path position of each link's centre at the start [m]
+  double slack = 0.0;            // [m] the seating slack measured from the link model (0: not measured)
   std::vector<std::string> notes;
 
   // state layout: the link model's rotor part (angle [, rate] per rotor) then input work and
@@ -94,10 +100,11 @@ struct SpanModel {
   int stateInputWork = -1, stateDissipated = -1;
 };
 
-/// Assembles the span model of an assembled link model (which must outlive it). Throws
+/// Assembles the span model of an assembled link model (which must outlive it), with the seating
+/// slack measured from the link model's static preload unless `measureSlack` is false. Throws
 /// DescriptionError naming the field when the drive has no span model (fewer than two sprockets
 /// in the route, a span holding more than one pivoting guide).
-SpanModel assembleSpanModel(const Model& m);
+SpanModel assembleSpanModel(const Model& m, bool measureSlack = true);
 
 /// s(theta) and ds/dtheta of a span end (see the header comment); theta in the running sense.
 double chainPassed(const SpanEnd& e, double theta, double& effectiveRadius);

@@ -105,6 +105,7 @@ std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
 
 // Newton's method on the torques of the free rotors over their angles (forward differences).
 struct StaticSolve {
+  static constexpr double kMaxStep = 0.005;  // [rad]
   const SpanModel& m;
   SpanData d;
   HeldInputs held;
@@ -135,7 +136,10 @@ struct StaticSolve {
         yp[m.stateAngle[free[c]]] += 1e-7;
         J.col(c) = (residual(yp) - r) / 1e-7;
       }
-      const Eigen::VectorXd dq = J.fullPivLu().solve(-r);
+      // steps of at most kMaxStep keep the guides inside their tables, where the torques are smooth
+      Eigen::VectorXd dq = J.fullPivLu().solve(-r);
+      const double largest = dq.cwiseAbs().maxCoeff();
+      if (largest > kMaxStep) dq *= kMaxStep / largest;
       for (int c = 0; c < n; ++c) y[m.stateAngle[free[c]]] += dq[c];
     }
     rMax = residual(y).cwiseAbs().maxCoeff();
