@@ -51,8 +51,10 @@ void rotorKinematics(const SpanModel& m, SpanData& d, const double* y) {
   for (std::size_t r = 0; r < lm.rotors.size(); ++r) {
     const double a = y[m.stateAngle[r]];
     d.rotorAngle[r] = a;
-    d.rotorCos[r] = std::cos(a);
-    d.rotorSin[r] = std::sin(a);
+    if (!lm.rotors[r].isSprocket) {  // only guides need them (tensioner, weight)
+      d.rotorCos[r] = std::cos(a);
+      d.rotorSin[r] = std::sin(a);
+    }
     d.rotorRate[r] = lm.rotors[r].prescribed ? lm.sense * d.inputs.crankSpeed : y[m.stateRate[r]];
   }
 }

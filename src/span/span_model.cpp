@@ -310,12 +310,29 @@ SpanModel assembleSpanModel(const Model& m, bool measureSlack) {
   return sm;
 }
 
+namespace {
+
+// sin and cos of |x| <= pi / z (at most 0.53 rad for z >= 6) by their Taylor series to x^13 and
+// x^14 (error below 4e-16 for z >= 6, 3e-24 for z = 21): cheaper than the library functions,
+// and the same bits on every platform.
+void smallSinCos(double x, double& s, double& c) {
+  const double x2 = x * x;
+  s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0 * (1.0 - x2 / 110.0 *
+                                                                                         (1.0 - x2 / 156.0))))));
+  c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0 *
+                                                                                      (1.0 - x2 / 132.0 * (1.0 - x2 / 182.0))))));
+}
+
+}  // namespace
+
 double chainPassed(const SpanEnd& e, double theta, double& effectiveRadius) {
   const double u = (theta + e.phase) / e.toothAngle;
   const double k = std::floor(u + 0.5);
-  const double rel = (u - k) * e.toothAngle;
-  effectiveRadius = e.radius * std::cos(rel);
-  return k * e.pitch + e.radius * (std::sin(rel) - std::sin(e.phase));
+  double s, c, s0, c0;
+  smallSinCos((u - k) * e.toothAngle, s, c);
+  smallSinCos(e.phase, s0, c0);
+  effectiveRadius = e.radius * c;
+  return k * e.pitch + e.radius * (s - s0);
 }
 
 }  // namespace chaindrive::span
