@@ -40,6 +40,7 @@ struct SpanEnd {
   double pitch = 0.0;       // [m]
   double phase = 0.0;       // running-sense angle from the tangent point to the nearest roller at the start,
                             // in [-toothAngle / 2, toothAngle / 2)
+  double passedAtPhase = 0.0;  // R sin(phase): s(theta) counts from the start
 };
 
 /// Geometry of a span that holds a pivoting guide, at equidistant guide angles: the span's

@@ -44,6 +44,7 @@ TEST(SpanModel, ChainPassedIsOnePitchPerToothWithThePolygonalRadius) {
   e.toothAngle = 2.0 * kPi / 21.0;
   e.pitch = 2.0 * e.radius * std::sin(kPi / 21.0);
   e.phase = 0.05;
+  e.passedAtPhase = e.radius * std::sin(e.phase);
   double r = 0.0;
   EXPECT_NEAR(chainPassed(e, 0.0, r), 0.0, 1e-15);
   EXPECT_NEAR(chainPassed(e, 5.0 * e.toothAngle, r), 5.0 * e.pitch, 1e-14);
