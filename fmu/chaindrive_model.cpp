@@ -120,8 +120,11 @@ bool ChainDriveModel::parametersValid() {
   return problems.empty();
 }
 
-// The named choices: integrator, contact method, joint model.
+// The named choices: fidelity, integrator, contact method, joint model.
 void ChainDriveModel::checkChoices(std::vector<std::string>& problems) const {
+  const bool span = params_.fidelity == "span";
+  if (!span && params_.fidelity != "link")
+    problems.push_back("fidelity: '" + params_.fidelity + "' is unknown; allowed: link, span");
   bool knownMethod = false;
   std::string methods;
   for (const auto& n : integratorNames()) {
@@ -136,6 +139,14 @@ void ChainDriveModel::checkChoices(std::vector<std::string>& problems) const {
   if (!params_.jointModel.empty() && params_.jointModel != "journal-bearing" && params_.jointModel != "ideal")
     problems.push_back("chain.jointModel: '" + params_.jointModel +
                        "' is unknown; allowed: journal-bearing, ideal (or empty: the drive's)");
+  // the span fidelity has spans, no contacts, and takes its span stiffness from journal bearings
+  // (a drive description that asks for other ones is refused when the simulation is built)
+  if (span && (params_.contactMethod == "event-driven" || params_.contactMethod == "time-stepping"))
+    problems.push_back("contact.method: '" + params_.contactMethod +
+                       "' does not apply to fidelity 'span'; allowed with it: compliant (or empty: the drive's)");
+  if (span && params_.jointModel == "ideal")
+    problems.push_back("chain.jointModel: 'ideal' does not apply to fidelity 'span'; allowed with it: journal-bearing "
+                       "(or empty: the drive's)");
 }
 
 // The numbers: solver tolerance and step, the tensioner overrides (negative: as in the drive).
@@ -219,6 +230,7 @@ bool ChainDriveModel::assignRoles(const Model& m) {
 void ChainDriveModel::startSimulation() {
   // the solver options from the parameters
   SimulationOptions opt;
+  opt.fidelity = params_.fidelity;
   opt.integrator.method = params_.method;
   opt.integrator.adaptive.rtol = params_.tolerance;
   opt.integrator.fixed.step = params_.step;
@@ -237,6 +249,7 @@ void ChainDriveModel::startSimulation() {
   const PreloadReport& rep = sim_->preloadReport();
   host_.log(rep.converged ? fmi2OK : fmi2Warning, rep.converged ? "logEvents" : "logStatusWarning",
             "start state: %s (%.3f s CPU)", rep.message.c_str(), rep.cpuSeconds);
+  host_.log(fmi2OK, "logEvents", "fidelity: %s (%zu states)", sim_->fidelity().c_str(), sim_->state().size());
   const TimeGrid& grid = sim_->grid();
   host_.log(fmi2OK, "logEvents",
             "time grid: t_k = %.17g s + k %.17g s; a communication point within %.3g s of a grid point is that point, "
@@ -279,6 +292,7 @@ std::string* ChainDriveModel::stringParameter(unsigned vr) {
     case kSolverMethod: return &params_.method;
     case kContactMethod: return &params_.contactMethod;
     case kChainJointModel: return &params_.jointModel;
+    case kFidelity: return &params_.fidelity;
     default: return nullptr;
   }
 }
@@ -483,10 +497,12 @@ ChainDriveModel::Snapshot ChainDriveModel::snapshot() const {
 
 fmi2Status ChainDriveModel::restore(const Snapshot& s) {
   if (!s.y.empty()) {
-    // the solver state must be one of this drive, on this instance's time grid
-    if (!sim_ || static_cast<int>(s.y.size()) != model_->nStates) {
-      host_.log(fmi2Error, "logStatusError", "fmi2SetFMUstate: the state has %zu components, this instance %d "
-                "(initialize the instance with the same drive first)", s.y.size(), sim_ ? model_->nStates : 0);
+    // the solver state must be one of this drive and fidelity (their state sizes differ), on
+    // this instance's time grid
+    const std::size_t size = sim_ ? sim_->state().size() : 0;
+    if (s.y.size() != size) {
+      host_.log(fmi2Error, "logStatusError", "fmi2SetFMUstate: the state has %zu components, this instance %zu "
+                "(initialize the instance with the same drive and fidelity first)", s.y.size(), size);
       return fmi2Error;
     }
     const TimeGrid& grid = sim_->grid();

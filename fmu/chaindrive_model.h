@@ -67,7 +67,8 @@ class ChainDriveModel {
   fmi2Status doStep(double cp, double tEnd);
 
   Snapshot snapshot() const;
-  /// fmi2Error (logged) if the snapshot's solver state does not fit this instance.
+  /// fmi2Error (logged) if the snapshot's solver state does not fit this instance (another drive
+  /// or fidelity: the state sizes differ).
   fmi2Status restore(const Snapshot& s);
 
   // the fixed fields of a serialized Snapshot, and the first field no instance can have written
@@ -83,6 +84,7 @@ class ChainDriveModel {
     std::string method = "fixed-verlet";
     std::string contactMethod;  // "": the drive's
     std::string jointModel;     // "": the drive's
+    std::string fidelity = "link";  // "link" or "span" (SimulationOptions::fidelity)
     double tolerance = 1e-5;
     double step = 2.5e-6;
     bool preload = true;

@@ -50,6 +50,7 @@ enum Vr : unsigned {
   kSolverPreload = 105,
   kContactMethod = 106,
   kChainJointModel = 107,
+  kFidelity = 108,
   kTensionerPreload = 110,
   kTensionerStiffness = 111,
   kTensionerDamping = 112,
@@ -111,6 +112,7 @@ constexpr Variable kVariables[] = {
   {"tensioner.dampingExtension", kTensionerDampingExtension, Type::Real,   Causality::Parameter, "-1"},
   {"contact.method",             kContactMethod,            Type::String,  Causality::Parameter, ""},
   {"chain.jointModel",           kChainJointModel,          Type::String,  Causality::Parameter, ""},
+  {"fidelity",                   kFidelity,                 Type::String,  Causality::Parameter, "link"},
 };
 // clang-format on
 

@@ -13,7 +13,7 @@
 namespace chaindrive::fuzz {
 
 const char* planName(std::uint32_t plan) {
-  constexpr const char* kNames[kPlanCount] = {"poisoned", "cheap-init", "full-init", "other-method"};
+  constexpr const char* kNames[kPlanCount] = {"poisoned", "cheap-init", "full-init", "other-method", "span"};
   return plan < kPlanCount ? kNames[plan] : "unknown";
 }
 
@@ -29,11 +29,14 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Shares of the plans. Only FullInit pays for the start-state solve; it is the dominant cost per
-// sequence under the sanitizers, hence its small share (it is the same code every time).
+// Shares of the plans. Only FullInit pays for the link model's start-state solve; it is the
+// dominant cost per sequence under the sanitizers, hence its small share (it is the same code
+// every time). Span initializes the span model (its start-state solve is a Newton iteration on
+// the few free rotors, milliseconds) and runs any integrator.
 constexpr double kShareFullInit = 0.02;
 constexpr double kShareOtherMethod = 0.14;
-constexpr double kShareCheapInit = 0.44;
+constexpr double kShareSpan = 0.05;
+constexpr double kShareCheapInit = 0.39;
 // An importer that follows the standard makes most calls; the rest are random (wrong order,
 // wrong arguments).
 constexpr double kShareNominalCalls = 0.7;
@@ -98,7 +101,8 @@ SequenceStats CallSequence::run() {
 void CallSequence::choosePlan() {
   const std::vector<Assignment> defaultMethods = {stringAssignment(fmu::kSolverMethod, "fixed-verlet"),
                                                   stringAssignment(fmu::kContactMethod, ""),
-                                                  stringAssignment(fmu::kChainJointModel, "")};
+                                                  stringAssignment(fmu::kChainJointModel, ""),
+                                                  stringAssignment(fmu::kFidelity, "link")};
   const double r = rng_.unit();
   if (r < kShareFullInit) {
     stats_.plan = static_cast<std::uint32_t>(Plan::FullInit);
@@ -109,7 +113,10 @@ void CallSequence::choosePlan() {
     pins_ = methodAssignments(stats_.combination);
     stepsLeft_ = methodCombinationSteps(stats_.combination);  // the slower methods: a step or two of 10 us
     shortestStep_ = longestStep_ = 1e-5;
-  } else if (r < kShareFullInit + kShareOtherMethod + kShareCheapInit) {
+  } else if (r < kShareFullInit + kShareOtherMethod + kShareSpan) {
+    stats_.plan = static_cast<std::uint32_t>(Plan::Span);
+    pins_ = spanAssignments(rng_);
+  } else if (r < kShareFullInit + kShareOtherMethod + kShareSpan + kShareCheapInit) {
     stats_.plan = static_cast<std::uint32_t>(Plan::CheapInit);
     pins_ = defaultMethods;
     pins_.push_back(booleanAssignment(fmu::kSolverPreload, false));

@@ -25,8 +25,9 @@ enum class Plan : std::uint32_t {
   CheapInit,    // initializes without the start-state solve; communication steps of 10..100 us
   FullInit,     // the default start with the kinetostatic preload (about 1 s under the sanitizers)
   OtherMethod,  // another integrator, contact method or joint model; communication steps of 10 us
+  Span,         // the span fidelity with any integrator; communication steps of 10..100 us
 };
-constexpr std::uint32_t kPlanCount = 4;
+constexpr std::uint32_t kPlanCount = 5;
 const char* planName(std::uint32_t plan);
 
 /// What one sequence did. Trivially copyable: it travels through a pipe.

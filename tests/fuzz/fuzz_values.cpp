@@ -18,7 +18,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kExtremeReals[] = {kNaN, kInf, -kInf, 1e300, -1e300, DBL_MAX, -DBL_MAX, 4.9e-324, -0.0, 0.0, -1.0, 1e6};
 
 // value references that name no variable (gaps between the blocks, beyond the end, the extremes)
-constexpr unsigned kInvalidValueReferences[] = {0u, 4u, 9u, 34u, 42u, 99u, 108u, 114u, 1000u, 0xFFFFFFFFu};
+constexpr unsigned kInvalidValueReferences[] = {0u, 4u, 9u, 35u, 42u, 99u, 109u, 114u, 1000u, 0xFFFFFFFFu};
 
 const std::string kLongString(3000, 'x');
 // a string that crashes a logger which uses it as a printf format
@@ -28,6 +28,7 @@ const std::vector<std::string> kIntegrators = {"fixed-verlet", "arkode-erk", "ar
                                                "cvode-bdf-band"};
 const std::vector<std::string> kContactMethods = {"", "compliant", "time-stepping", "event-driven"};
 const std::vector<std::string> kJointModels = {"", "journal-bearing", "ideal"};
+const std::vector<std::string> kFidelities = {"link", "span"};
 const std::vector<std::string> kBadNames = {"no-such-method", "FIXED-VERLET", "fixed-verlet ", " ", "rigid", "welded",
                                             "-1", kFormatString, kLongString};
 
@@ -120,6 +121,7 @@ std::optional<std::string> goodString(Rng& rng, unsigned vr, const FuzzPaths& pa
     case kSolverMethod: return rng.pick(kIntegrators);
     case kContactMethod: return rng.pick(kContactMethods);
     case kChainJointModel: return rng.pick(kJointModels);
+    case kFidelity: return rng.pick(kFidelities);
     default: return rng.pick(kBadNames);  // not a string variable: the setter refuses
   }
 }
@@ -150,7 +152,7 @@ std::optional<std::string> resourceLocation(Rng& rng, const FuzzPaths& paths) {
 }
 
 std::vector<Assignment> poisonAssignments(Rng& rng, const FuzzPaths& paths) {
-  switch (rng.below(10)) {
+  switch (rng.below(11)) {
     case 0: return {stringAssignment(kSolverMethod, rng.pick(kBadNames))};
     case 1: return {stringAssignment(kContactMethod, "rigid")};
     case 2: return {stringAssignment(kChainJointModel, kFormatString)};
@@ -163,6 +165,14 @@ std::vector<Assignment> poisonAssignments(Rng& rng, const FuzzPaths& paths) {
     // rejected after the assembly (cheap) but before the start-state solve
     case 7: return {integerAssignment(kLinkIndex, rng.pick({-2, 120, INT_MAX}))};
     case 8: return {stringAssignment(kChainJointModel, "ideal"), stringAssignment(kContactMethod, "compliant")};
+    case 9:  // an unknown fidelity, or the span fidelity with what it does not take
+      switch (rng.below(3)) {
+        case 0: return {stringAssignment(kFidelity, "span"), stringAssignment(kContactMethod, "time-stepping")};
+        case 1: return {stringAssignment(kFidelity, "span"), stringAssignment(kChainJointModel, "ideal")};
+        default:
+          return {stringAssignment(kFidelity, rng.pick({std::string("beam"), std::string("Span"), std::string(),
+                                                        std::string(kFormatString)}))};
+      }
     default: return {stringAssignment(kSolverMethod, "")};
   }
 }
@@ -197,10 +207,17 @@ std::string methodCombinationName(std::size_t index) {
 
 int methodCombinationSteps(std::size_t index) { return kMethodCombinations[index].steps; }
 
+std::vector<Assignment> spanAssignments(Rng& rng) {
+  return {stringAssignment(kFidelity, "span"), stringAssignment(kSolverMethod, rng.pick(kIntegrators)),
+          stringAssignment(kContactMethod, rng.pick({"", "compliant"})),
+          stringAssignment(kChainJointModel, rng.pick({"", "journal-bearing"}))};
+}
+
 std::vector<Assignment> methodAssignments(std::size_t index) {
   const MethodCombination& c = kMethodCombinations[index];
   return {stringAssignment(kSolverMethod, c.integrator), stringAssignment(kContactMethod, c.contact),
-          stringAssignment(kChainJointModel, c.joints), booleanAssignment(kSolverPreload, false)};
+          stringAssignment(kChainJointModel, c.joints), stringAssignment(kFidelity, "link"),
+          booleanAssignment(kSolverPreload, false)};
 }
 
 }  // namespace chaindrive::fuzz

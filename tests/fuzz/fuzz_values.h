@@ -57,6 +57,8 @@ std::optional<std::string> resourceLocation(Rng& rng, const FuzzPaths& paths);
 /// One or two assignments that the setters accept and the initialization rejects cheaply
 /// (before the start-state solve).
 std::vector<Assignment> poisonAssignments(Rng& rng, const FuzzPaths& paths);
+/// The span fidelity with one of the integrators and the contact method and joints it takes.
+std::vector<Assignment> spanAssignments(Rng& rng);
 /// Combinations of integrator, contact method and joint model other than the default one.
 std::size_t methodCombinationCount();
 /// "integrator/contact method/joint model"

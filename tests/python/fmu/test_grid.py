@@ -25,6 +25,7 @@ METHODS = [
     pytest.param({"solver.method": "fixed-verlet", "solver.step": 2.5e-6}, 300, id="fixed-verlet"),
     pytest.param({"solver.method": "arkode-erk-fixed", "solver.step": 2e-6}, 300, id="arkode-erk-fixed"),
     pytest.param({"contact.method": "time-stepping", "solver.step": 2.5e-6}, 300, id="time-stepping"),
+    pytest.param({"fidelity": "span", "solver.step": 2.5e-6}, 300, id="span-fixed-verlet"),
     pytest.param({"solver.method": "arkode-erk", "solver.tolerance": 1e-5}, 100, id="arkode-erk"),
     pytest.param({"solver.method": "cvode-bdf-klu", "solver.tolerance": 1e-5}, 100, id="cvode-bdf-klu"),
 ]
