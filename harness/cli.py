@@ -3,6 +3,7 @@
     python -m harness run            the main job (harness/job.py)
     python -m harness study          work-precision charts and stability map (harness/study/study.py)
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
+    python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
     python -m harness tables         the SYNTHESIZED input tables (harness/tables/make_tables.py)
@@ -26,6 +27,8 @@ COMMANDS = {
     "run": ("harness.job", "the main job: a scene through ChainDrive.fmu with the measured-torque tables"),
     "study": ("harness.study.study", "work-precision charts on cycle statistics and the stability map"),
     "chaos": ("harness.study.chaos.chaos", "divergence rate of twin runs per damping setting"),
+    "fidelity": ("harness.study.fidelity", "the span model against the link model within tolerances: "
+                 "the cheapest fidelity that meets them"),
     "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),
     "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),
     "tables": ("harness.tables.make_tables", "generate the SYNTHESIZED camshaft-torque and crankshaft-speed tables"),

@@ -17,7 +17,11 @@ exactly one period, so order k per crankshaft revolution is DFT bin 2 k, without
 Confidence interval: mean +- t_(0.975, n_eff - 1) s / sqrt(n_eff) over the n per-cycle values,
 s their sample standard deviation and n_eff = n (1 - r1) / (1 + r1) when the lag-1
 autocorrelation r1 of successive cycles is positive (the effective number of independent cycles
-of an AR(1) sequence), n otherwise.
+of an AR(1) sequence), n otherwise, and at least 2 (one degree of freedom) for two or more cycles:
+values that vary slowly from cycle to cycle, as the span model's deterministic modulation over
+tens of engine cycles, have r1 near 1, where the AR(1) estimate of n_eff falls towards 1 and its t
+quantile grows without bound; two effective cycles give t = 12.7 and an interval of about nine
+cycle-to-cycle standard deviations, a wide but finite statement.
 """
 import math
 
@@ -76,10 +80,11 @@ def level_quantities(d):
 ORDER_SIGNALS = (("tensioner.F", "N", 1.0, ""), ("tensionGuide.phi", "deg", 180.0 / math.pi, "_deg"))
 
 
-def per_cycle(d, run_in_cycles, meshing_order):
-    """Per-cycle values of every headline quantity: {key: (unit, array over the counted cycles)};
-    the orders are 2, 4, 6, 8 and the crankshaft meshing order."""
-    spans = cycle_spans(d["crankshaft.phi"], run_in_cycles)
+def per_cycle(d, run_in_cycles, meshing_order, cycles=None):
+    """Per-cycle values of every headline quantity: {key: (unit, array over the counted cycles)},
+    the first `cycles` whole cycles after the run-in (all when None); the orders are 2, 4, 6, 8 and
+    the crankshaft meshing order."""
+    spans = cycle_spans(d["crankshaft.phi"], run_in_cycles)[:cycles]
     cycles = [slice(i0, i1) for i0, i1, _ in spans]
     out = {key: (unit, np.array([float(f(s)) for s in cycles])) for key, unit, f in level_quantities(d)}
     orders = list(ORDERS) + [meshing_order]
@@ -89,6 +94,21 @@ def per_cycle(d, run_in_cycles, meshing_order):
         for i, k in enumerate(orders):
             out[f"{name}.order{k:g}{suffix}"] = (unit, amps[:, i] if len(spans) else np.array([]))
     return out
+
+
+def headline_keys(meshing_order):
+    """The keys of every headline quantity, in the order of per_cycle(): the keys of a synthetic
+    record of one engine cycle (so that they are per_cycle's own, not a copy of them)."""
+    phi = np.linspace(0.0, ENGINE_CYCLE, 9)
+    record = {name: np.zeros_like(phi) for name in ("tensioner.F", "chain.Ftight", "chain.Fslack", "tensionGuide.phi",
+                                                   "camshaftIntake.phi", "camshaftExhaust.phi")}
+    record["crankshaft.phi"] = phi
+    return list(per_cycle(record, 0, meshing_order))
+
+
+def order_keys(keys):
+    """{output: its order-amplitude keys} (ORDER_SIGNALS) among keys."""
+    return {name: [k for k in keys if k.startswith(name + ".order")] for name, _, _, _ in ORDER_SIGNALS}
 
 
 def lag1_autocorrelation(x):
@@ -109,7 +129,7 @@ def interval(values, confidence=0.95):
         return mean, math.nan, float(n)
     r1 = lag1_autocorrelation(x)
     n_eff = n * (1.0 - r1) / (1.0 + r1) if r1 > 0 else float(n)
-    n_eff = max(n_eff, 1.0 + 1e-9)
+    n_eff = max(n_eff, 2.0)  # see the module docstring: no fewer than two effective cycles
     t = float(scistats.t.ppf(0.5 + 0.5 * confidence, n_eff - 1.0))
     return mean, t * float(np.std(x, ddof=1)) / math.sqrt(n_eff), n_eff
 

@@ -13,6 +13,12 @@ rpm). The run-in, the smallest whole number of engine cycles that is at least 2 
 least 0.15 s long (4 cycles at 3000 rpm, 8 at 6000 rpm, 2 at 1000 rpm), is discarded; the
 counted cycles (--cycles) follow.
 
+Two fidelities (--fidelity, the FMU parameter `fidelity`): link (default), the link-by-link model,
+and span, the span model (rotors and longitudinal spans, src/span/, about 80 times cheaper inside
+fmi2DoStep, not as accurate: python -m harness fidelity compares them). Both give the same
+outputs, so the same cycle statistics, plots and summary; the fidelity is named in the header line
+and the plot titles. The solver step defaults to each fidelity's own (SOLVER_STEP).
+
 Two couplings:
   closed (default)  the way an engine simulator couples: a master loop (fmpy FMU2Slave) looks the
                     camshaft torques up at the FMU's own camshaft angles and the crankshaft speed
@@ -20,9 +26,14 @@ Two couplings:
   open              the tables turned into time series at the mean speed and passed to
                     fmpy.simulate_fmu as input.
 
-    python -m harness run [--rpm 3000] [--cycles N] [--run-in S] [--coupling closed|open] [--step 1e-4]
-                          [--method fixed-verlet] [--solver-step 2.5e-6] [--drive FILE] [--out results]
+    python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in S]
+                          [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
+                          [--solver-step S] [--drive FILE] [--out results]
+
+Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
+cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.
 """
+import dataclasses
 import json
 import math
 import pathlib
@@ -40,6 +51,14 @@ from .tables import tables
 RUN_IN_CYCLES = 2          # the run-in: at least this many engine cycles ...
 RUN_IN_TIME = 0.15         # [s] ... and at least this long
 DEFAULT_CYCLES = 120       # counted engine cycles of the default run (see README: 1 % confidence)
+# the tables' mean speed over time (the harmonic mean of the speed over crank angle) lies up to
+# 0.2 % below the nominal speed (at 1000 rpm): 120 cycles then take a quarter of a cycle longer
+SPEED_MARGIN = 0.005
+FIDELITIES = ("link", "span")  # values of the FMU parameter `fidelity`: the reference, then the cheaper
+# [s] default FMU parameter solver.step per fidelity (fixed-verlet): the link model is stable below
+# about 3.5 us; the span model (no link masses: rotors on span springs) runs at 100 us and blows up
+# at 200 us on the default drive, so 20 us keeps a factor 5 and divides the communication step
+SOLVER_STEP = {"link": 2.5e-6, "span": 2e-5}
 
 class Progress:
     """A text progress bar on stderr."""
@@ -65,14 +84,16 @@ class Progress:
 
 
 def parameters_of(args):
-    p = {"solver.method": args.method, "solver.step": args.solver_step, "solver.tolerance": args.rtol}
+    p = {"fidelity": args.fidelity, "solver.method": args.method, "solver.step": args.solver_step,
+         "solver.tolerance": args.rtol}
     if args.drive:
         p["driveFile"] = str(pathlib.Path(args.drive).resolve())
     return p
 
 
 def run_closed(args, duration, torque, speed):
-    """Master loop: inputs looked up at the FMU's own angles before every step."""
+    """Master loop: inputs looked up at the FMU's own angles before every step. Returns (record,
+    CPU seconds spent inside fmi2DoStep)."""
     s = fmu.Slave("chaindrive", parameters=parameters_of(args))
     n = int(round(duration / args.step))
     w0 = speed_at(speed, 0.0)
@@ -97,7 +118,7 @@ def run_closed(args, duration, torque, speed):
     prog.done()
     s.close()
     cols = ["time"] + names + ["input.crankshaft.w", "input.camshaftIntake.tau", "input.camshaftExhaust.tau"]
-    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}
+    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpu
 
 
 def speed_at(speed, crank_deg):
@@ -107,6 +128,8 @@ def speed_at(speed, crank_deg):
 
 
 def run_open(args, duration, torque, speed):
+    """fmpy.simulate_fmu with the tables as time series. Returns (record, None): fmpy's loop does
+    not tell the time spent inside fmi2DoStep."""
     from fmpy import simulate_fmu
     ts = tables.time_series(args.rpm, duration, min(2e-5, args.step), torque_table=torque, speed_table=speed)
     names = ["crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau"]
@@ -121,7 +144,7 @@ def run_open(args, duration, torque, speed):
     out = {n: np.asarray(res[n], dtype=float) for n in res.dtype.names}
     for n in names:
         out["input." + n] = np.interp(out["time"], ts["time"], ts[n])
-    return out
+    return out, None
 
 
 def write_csv(path, d):
@@ -134,6 +157,8 @@ def write_csv(path, d):
 def add_arguments(ap):
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
     ap.add_argument("--rpm", type=float, default=3000.0, help="mean engine speed [rpm], 1000-6000 (tables)")
+    ap.add_argument("--fidelity", choices=FIDELITIES, default="link",
+                    help="FMU parameter fidelity: link (link-by-link model, default) or span (span model)")
     ap.add_argument("--cycles", type=int, default=DEFAULT_CYCLES,
                     help=f"engine cycles (720 deg crank) counted after the run-in (default {DEFAULT_CYCLES})")
     ap.add_argument("--run-in", type=int, help=f"engine cycles discarded before the first counted one (default: "
@@ -142,7 +167,8 @@ def add_arguments(ap):
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
     ap.add_argument("--step", type=float, default=1e-4, help="communication step [s]")
     ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")
-    ap.add_argument("--solver-step", type=float, default=2.5e-6, help="FMU parameter solver.step [s]")
+    ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: "
+                    + ", ".join(f"{f} {h:g}" for f, h in SOLVER_STEP.items()) + ")")
     ap.add_argument("--rtol", type=float, default=1e-5, help="FMU parameter solver.tolerance")
     ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
 
@@ -152,6 +178,8 @@ def check(ap, args):
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
     if args.run_in is not None and args.run_in < 0:
         ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
+    if args.solver_step is None:
+        args.solver_step = SOLVER_STEP[args.fidelity]
     return args
 
 
@@ -161,7 +189,7 @@ CYCLE_PLOT_KEYS = ("tensioner.F.mean", "tensioner.F.peakToPeak", "tensionGuide.p
 
 
 def write_plots(out, d, args, t0, per_cycle, summary):
-    title = f"{args.rpm:g} rpm, {args.coupling} loop, {args.method}"
+    title = f"{args.rpm:g} rpm, {args.fidelity} fidelity, {args.coupling} loop, {args.method}"
     drive_picture.drive_picture(out / "drive.png", args.drive)
     plots.time_histories(out / "time_histories.png", d, args.rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)",
                          t_end=t0 + SHOWN_CYCLES * 120.0 / args.rpm, t_counted=t0)
@@ -179,10 +207,64 @@ def run_in_cycles(rpm):
     return max(RUN_IN_CYCLES, math.ceil(RUN_IN_TIME * rpm / 120.0 - 1e-9))
 
 
-def report(summary, run_in, cpu, duration):
+@dataclasses.dataclass
+class SceneRun:
+    """A scene run through the FMU: its record and what it cost."""
+    record: dict            # output and input columns over time
+    run_in: int             # engine cycles discarded before the counted ones
+    duration: float         # [s] simulated
+    cpu: float              # [s] CPU time of the whole loop (FMU and master)
+    step_cpu: float | None  # [s] CPU time inside fmi2DoStep (closed loop only)
+
+    def cost(self, args):
+        """What ran and its cost (run.json): CPU seconds per simulated second of the loop and of
+        fmi2DoStep alone (the FMU's own cost; None in open loop)."""
+        per_s = None if self.step_cpu is None else self.step_cpu / self.duration
+        return {"fidelity": args.fidelity, "rpm": args.rpm, "drive": args.drive, "coupling": args.coupling,
+                "method": args.method, "solverStep_s": args.solver_step, "communicationStep_s": args.step,
+                "runInCycles": self.run_in, "cycles": args.cycles, "simulated_s": self.duration, "cpu_s": self.cpu,
+                "doStepCpu_s": self.step_cpu, "cpuPerSimulatedSecond": self.cpu / self.duration,
+                "doStepCpuPerSimulatedSecond": per_s}
+
+
+def simulate(args):
+    """Runs the scene of args (the options of this command, checked) through ChainDrive.fmu over
+    the run-in and the counted cycles; prints what runs."""
+    cycle = 2.0 * 60.0 / args.rpm
+    run_in = args.run_in if args.run_in is not None else run_in_cycles(args.rpm)
+    # a tenth of a cycle and SPEED_MARGIN more, so that the last counted cycle is complete with the
+    # speed fluctuation
+    duration = ((run_in + args.cycles) * (1.0 + SPEED_MARGIN) + 0.1) * cycle
+    torque = tables.camshaft_torque(args.rpm, args.tables)
+    speed = tables.crankshaft_speed(args.rpm, args.tables)
+    print(f"ChainDrive.fmu, {args.fidelity} fidelity: {args.drive or 'default drive'}, {args.rpm:g} rpm, run-in "
+          f"{run_in} + {args.cycles} engine cycles ({duration * 1e3:.1f} ms), {args.coupling}-loop coupling, "
+          f"communication step {args.step * 1e6:g} us, {args.method} at {args.solver_step * 1e6:g} us")
+    print(f"tables: {torque.path} ({torque.provenance})")
+    cpu0 = time.process_time()
+    loop = run_closed if args.coupling == "closed" else run_open
+    d, step_cpu = loop(args, duration, torque, speed)
+    return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpu)
+
+
+def cycle_statistics(args, scene_run):
+    """(per-cycle values, summary) of the counted cycles of a scene run (harness/cycle_stats.py)."""
+    per_cycle = cycle_stats.per_cycle(scene_run.record, scene_run.run_in, meshing_order(drive_json(args.drive)),
+                                      args.cycles)
+    return per_cycle, cycle_stats.summarize(per_cycle)
+
+
+def write_summary(out, summary, cost):
+    """summary.json (the cycle statistics) and run.json (what ran, its cost) in out."""
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    (out / "run.json").write_text(json.dumps(cost, indent=1) + "\n")
+
+
+def report(summary, scene_run):
     """Prints the cycle statistics and the cost; says so when the confidence half-width of the
     tensioner-force mean exceeds 1 %, with the number of cycles that would bring it to 1 %."""
-    print(f"\nsummary: mean over engine cycles after a run-in of {run_in} cycles, +- the 95 % confidence "
+    print(f"\nsummary: mean over engine cycles after a run-in of {scene_run.run_in} cycles, +- the 95 % confidence "
           f"half-width")
     for key, s in summary.items():
         print(cycle_stats.format_line(key, s))
@@ -191,33 +273,25 @@ def report(summary, run_in, cpu, duration):
     if rel > 0.01:
         need = math.ceil(F["cycles"] * (rel / 0.01) ** 2)
         print(f"  note: the tensioner-force mean is known to {100 * rel:.2f} %; about {need} cycles give 1 %")
-    print(f"  CPU time {cpu:.2f} s for {duration * 1e3:.1f} ms simulated: {cpu / duration:.2f} CPU s per simulated s "
+    cpu, duration = scene_run.cpu, scene_run.duration
+    print(f"  CPU time {cpu:.2f} s for {duration * 1e3:.1f} ms simulated: {cpu / duration:.3g} CPU s per simulated s "
           f"(real-time factor, FMU and master loop)")
+    if scene_run.step_cpu is not None:
+        print(f"  of which inside fmi2DoStep {scene_run.step_cpu:.2f} s: {scene_run.step_cpu / duration:.3g} CPU s per "
+              f"simulated s (the FMU alone)")
 
 
 def run(args):
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    cycle = 2.0 * 60.0 / args.rpm
-    run_in = args.run_in if args.run_in is not None else run_in_cycles(args.rpm)
-    # a tenth of a cycle more, so that the last counted cycle is complete with the speed fluctuation
-    duration = (run_in + args.cycles + 0.1) * cycle
-    torque = tables.camshaft_torque(args.rpm, args.tables)
-    speed = tables.crankshaft_speed(args.rpm, args.tables)
-    print(f"ChainDrive.fmu: {args.drive or 'default drive'}, {args.rpm:g} rpm, run-in {run_in} + "
-          f"{args.cycles} engine cycles ({duration * 1e3:.1f} ms), {args.coupling}-loop coupling, communication "
-          f"step {args.step * 1e6:g} us, {args.method}")
-    print(f"tables: {torque.path} ({torque.provenance})")
-    cpu0 = time.process_time()
-    d = run_closed(args, duration, torque, speed) if args.coupling == "closed" else run_open(args, duration, torque, speed)
-    cpu = time.process_time() - cpu0
+    scene_run = simulate(args)
     csv = out / "outputs.csv"
-    write_csv(csv, d)
-    per_cycle = cycle_stats.per_cycle(d, run_in, meshing_order(drive_json(args.drive)))
-    summary = cycle_stats.summarize(per_cycle)
-    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
-    t0 = d["time"][cycle_stats.cycle_spans(d["crankshaft.phi"], run_in)[0][0]]
+    write_csv(csv, scene_run.record)
+    per_cycle, summary = cycle_statistics(args, scene_run)
+    write_summary(out, summary, scene_run.cost(args))
+    d = scene_run.record
+    t0 = d["time"][cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[0][0]]
     pictures = write_plots(out, d, args, t0, per_cycle, summary)
-    report(summary, run_in, cpu, duration)
-    print(f"  outputs: {csv}, {out / 'summary.json'}")
+    report(summary, scene_run)
+    print(f"  outputs: {csv}, {out / 'summary.json'}, {out / 'run.json'}")
     print("  plots: " + ", ".join(str(p) for p in pictures))

@@ -17,7 +17,7 @@ def is_order(key):
 def statistics(d, first_cycle, cycles, mesh):
     """{key: (unit, per-cycle values)} of the first `cycles` whole engine cycles from cycle index
     first_cycle on (crankshaft angle, harness/cycle_stats.py)."""
-    return {k: (u, v[:cycles]) for k, (u, v) in cycle_stats.per_cycle(d, first_cycle, mesh).items()}
+    return cycle_stats.per_cycle(d, first_cycle, mesh, cycles)
 
 
 def reference_statistics(stats):
@@ -37,6 +37,13 @@ def relative_error(key, value, ref, floor=1e-30):
     return 100.0 * (value - ref) / abs(ref) if ref else math.nan
 
 
+def z_score(mean, half, ref_mean, ref_half):
+    """The difference of two means over their combined 95 % half-width: |z| <= 1 when the
+    difference lies within the scatter of both (NaN without intervals)."""
+    combined = math.hypot(half, ref_half)
+    return (mean - ref_mean) / combined if combined > 0 else math.nan
+
+
 def compare(stats, ref):
     """Per headline quantity: the method's cycle mean and half-width, and its error against the
     reference (% or dB; in units of the reference's scatter; z against the combined interval)."""
@@ -44,14 +51,13 @@ def compare(stats, ref):
     for key, (unit, v) in stats.items():
         r = ref[key]
         mean, half, _ = cycle_stats.interval(v)
-        combined = math.hypot(half, r["ci95"])
         out[key] = dict(mean=mean, ci95=half, cycles=int(len(v)), unit=unit,
                         error=relative_error(key, mean, r["mean"]), errorUnit="dB" if is_order(key) else "%",
                         # an interval reaching down to zero amplitude is drawn down to -20 dB of the mean
                         errorLow=relative_error(key, mean - half, r["mean"], floor=0.1 * mean),
                         errorHigh=relative_error(key, mean + half, r["mean"]),
                         scatter=(mean - r["mean"]) / r["sd"] if r["sd"] > 0 else math.nan,
-                        z=(mean - r["mean"]) / combined if combined > 0 else math.nan)
+                        z=z_score(mean, half, r["mean"], r["ci95"]))
     return out
 
 

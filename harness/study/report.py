@@ -4,12 +4,14 @@ import math
 
 from ..plots import plt
 from .chaos import report as chaos_report
+from . import ladder
 from .errors import joint_limit
 from .methods import KIND_CODES, METHODS, THRESHOLD_RMS, VERDICT_KEYS, is_rigid, setting_label
 
 MARKERS = dict(zip([m["id"] for m in METHODS], "osD^v<>Xp"))
 COLORS = dict(zip([m["id"] for m in METHODS], plt.rcParams["axes.prop_cycle"].by_key()["color"] + ["k"]))
 RIGID = {m["id"] for m in METHODS if is_rigid(m)}
+SPAN_LABEL = "span model against the link model (closed loop, FMU)"
 
 # the panels of a scene's work-precision chart: cycle statistics, then the short horizon
 PANELS = [("tensioner.F.mean", "tensioner force: mean"), ("tensioner.F.peakToPeak", "tensioner force: peak-to-peak"),
@@ -36,12 +38,12 @@ def reference_band(ref, key):
     return -half, half
 
 
-def compliant_range(scene, key, lo, hi):
-    """The error axis spans the reference band and the compliant methods' intervals: the few
-    cycles of the rigid-contact runs give intervals of hundreds of percent, which would squash the
-    comparison this chart is for; rigid points beyond it are clipped (their figures are in the
-    tables)."""
-    ends = [lo, hi]
+def compliant_range(scene, key, lo, hi, extra=()):
+    """The error axis spans the reference band, the compliant methods' intervals and the extra
+    points (the span model): the few cycles of the rigid-contact runs give intervals of hundreds
+    of percent, which would squash the comparison this chart is for; rigid points beyond it are
+    clipped (their figures are in the tables)."""
+    ends = [lo, hi] + [v for p in extra for v in (p["errorLow"], p["errorHigh"])]
     for p in scene["points"]:
         if p["kind"] == "ok" and p["method"] not in RIGID:
             ends += [p["errors"][key]["errorLow"], p["errors"][key]["errorHigh"]]
@@ -50,7 +52,9 @@ def compliant_range(scene, key, lo, hi):
     return a - pad, b + pad
 
 
-def statistic_panel(ax, scene, key, failures):
+def statistic_panel(ax, scene, key, failures, span=None):
+    """One statistic's errors over cost; span: the span model's point (ladder.span_point), drawn
+    on the tensioner-force mean's panel."""
     ref = scene["reference"]["statistics"]
     lo, hi = reference_band(ref, key)
     ax.axhspan(lo, hi, color="0.85", lw=0, label="reference 95 % interval")
@@ -65,7 +69,11 @@ def statistic_panel(ax, scene, key, failures):
         yerr = [[v["error"] - v["errorLow"] for v in e], [v["errorHigh"] - v["error"] for v in e]]
         ax.errorbar(x, y, yerr=yerr, marker=MARKERS[m["id"]], color=COLORS[m["id"]], lw=0.8, ms=4, capsize=2,
                     label=m["label"])
-    ax.set_ylim(*compliant_range(scene, key, lo, hi))
+    extra = [span] if span is not None and key == "tensioner.F.mean" else []
+    for p in extra:
+        ax.errorbar([p["cpu_per_s"]], [p["error"]], yerr=[[p["error"] - p["errorLow"]], [p["errorHigh"] - p["error"]]],
+                    marker="*", color="k", ms=9, capsize=3, ls="", label=SPAN_LABEL)
+    ax.set_ylim(*compliant_range(scene, key, lo, hi, extra))
     mark_failures(ax, failures, labelled=True)
     ax.set_ylabel("error [dB]" if ".order" in key else "error [%]", fontsize=8)
 
@@ -94,7 +102,8 @@ def mark_failures(ax, failures, labelled):
                         color=COLORS[mid])
 
 
-def chart_scene(path, scene):
+def chart_scene(path, scene, span=None):
+    """The work-precision chart of a scene; span: the span model's point (ladder.span_point) or None."""
     mesh = mesh_of(scene)
     fig, axes = plt.subplots(3, 3, figsize=(16, 13))
     F = scene["reference"]["statistics"]["tensioner.F.mean"]
@@ -109,13 +118,13 @@ def chart_scene(path, scene):
         if key == "short_F_rms_pct":
             short_panel(ax, scene, failures)
         else:
-            statistic_panel(ax, scene, key, failures)
+            statistic_panel(ax, scene, key, failures, span)
         ax.set_xscale("log")
         ax.set_title(label, fontsize=9)
         ax.set_xlabel("CPU s per simulated s", fontsize=8)
         ax.grid(True, which="both", alpha=0.25)
         ax.tick_params(labelsize=7)
-    handles, labels = axes.flat[0].get_legend_handles_labels()
+    handles, labels = axes.flat[0].get_legend_handles_labels()  # the first panel is the tensioner-force mean
     fail_handle = plt.Line2D([], [], marker="x", ls="", color="k", mew=2, label="failure (x at its cost; code)")
     fig.legend(handles + [fail_handle], labels + [fail_handle.get_label()], loc="lower center", ncol=5, fontsize=8)
     fig.tight_layout(rect=(0, 0.05, 1, 0.96))
@@ -352,11 +361,15 @@ def write(out, r, chaos_results=None):
           f"after the run-in; CPU time is the median of up to {r['settings']['repeats']} runs (runs above "
           f"{r['settings']['repeat_below']:g} s CPU are not repeated); repeated runs are bit-identical unless marked. "
           "Why statistics and not trajectories: [chaos.md](chaos.md) and the last section.", ""]
+    ladder_comparisons = r.get("fidelity", [])
     for sc in r["scenes"]:
-        chart_scene(out / f"wp_{sc['rpm']:g}rpm.png", sc)
+        comparison = next((c for c in ladder_comparisons if c["rpm"] == sc["rpm"]), None)
+        chart_scene(out / f"wp_{sc['rpm']:g}rpm.png", sc, comparison and ladder.span_point(comparison))
         L += [f"## {sc['rpm']:g} rpm", ""] + reference_section(sc)
         L += [f"![work-precision {sc['rpm']:g} rpm](wp_{sc['rpm']:g}rpm.png)", ""] + points_table(sc)
         L += ["Verdict:", ""] + verdicts(sc) + [""]
+    if ladder_comparisons:
+        L += ladder.report_lines(ladder_comparisons)
     L += stability_section(out, r["stability"]) + realtime_section(r["realtime"]) + chaos_section(chaos_results)
     L += ["## Log", "", "```"] + r["log"] + ["```"]
     (out / "report.md").write_text("\n".join(L) + "\n")

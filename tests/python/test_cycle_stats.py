@@ -54,3 +54,14 @@ def test_correlated_cycles_widen_the_interval():
         covered += abs(mean) <= half
     # with the naive interval (n instead of n_eff) the coverage would be about 78 %
     assert covered / trials >= 0.90
+
+
+def test_headline_keys_and_order_keys_per_signal():
+    keys = cycle_stats.headline_keys(21)
+    assert keys[:7] == ["tensioner.F.mean", "tensioner.F.peakToPeak", "chain.Ftight.mean", "chain.Fslack.mean",
+                        "tensionGuide.phi.peakToPeak_deg", "camshaftIntake.timing.peakToPeak_degCA",
+                        "camshaftExhaust.timing.peakToPeak_degCA"]
+    assert cycle_stats.order_keys(keys) == {
+        "tensioner.F": [f"tensioner.F.order{k}" for k in (2, 4, 6, 8, 21)],
+        "tensionGuide.phi": [f"tensionGuide.phi.order{k}_deg" for k in (2, 4, 6, 8, 21)]}
+    assert len(keys) == 17 and "tensioner.F.order19" in cycle_stats.headline_keys(19)

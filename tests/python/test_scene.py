@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from harness import job as scene
-from harness import paths
+from harness import cycle_stats, paths
 from harness.plots import plots
 from harness.tables import tables
 
@@ -18,10 +18,10 @@ RPM = 2000.0
 
 @pytest.fixture(scope="module")
 def closed_loop_2000():
-    args = argparse.Namespace(drive=None, rpm=RPM, step=1e-4, method="fixed-verlet", solver_step=2.5e-6, rtol=1e-5,
-                              tables=None)
+    args = argparse.Namespace(drive=None, rpm=RPM, step=1e-4, fidelity="link", method="fixed-verlet",
+                              solver_step=2.5e-6, rtol=1e-5, tables=None)
     cycle = 120.0 / RPM
-    d = scene.run_closed(args, 3 * cycle, tables.camshaft_torque(RPM), tables.crankshaft_speed(RPM))
+    d, _ = scene.run_closed(args, 3 * cycle, tables.camshaft_torque(RPM), tables.crankshaft_speed(RPM))
     return d, d["time"] >= cycle  # the first engine cycle is the start transient
 
 
@@ -81,3 +81,21 @@ def test_main_job_open_loop_quick(tmp_path):
         assert s["cycles"] == 3 and np.isfinite(s["mean"]) and s["ci95"] > 0.0, (key, s)
     # the tight span carries the camshaft torques: its mean force exceeds the slack span's
     assert summary["chain.Ftight.mean"]["mean"] > summary["chain.Fslack.mean"]["mean"]
+
+
+def test_main_job_span_fidelity_quick(tmp_path):
+    """The main job with the span model (FMU parameter fidelity): the same summary and plots,
+    the fidelity named in the header line, its own solver step, a fraction of the link model's cost."""
+    p = subprocess.run([sys.executable, "-m", "harness", "run", "--fidelity", "span", "--rpm", "6000", "--cycles", "3",
+                        "--run-in", "2", "--out", str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
+    assert p.returncode == 0, p.stderr + p.stdout
+    assert p.stdout.startswith("ChainDrive.fmu, span fidelity:") and "fixed-verlet at 20 us" in p.stdout
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert list(summary) == cycle_stats.headline_keys(21)
+    assert all(s["cycles"] == 3 and np.isfinite(s["mean"]) for s in summary.values())
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert run["fidelity"] == "span" and run["solverStep_s"] == 2e-5
+    # the link model costs about 9 CPU s per simulated s inside fmi2DoStep; the span model a few hundredths
+    assert 0.0 < run["doStepCpuPerSimulatedSecond"] < 2.0
+    for name in ("outputs.csv", "time_histories.png", "cycle_statistics.png", "spectra.png", "link_cycle.png"):
+        assert (tmp_path / name).stat().st_size > 1000, name

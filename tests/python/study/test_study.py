@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from harness import paths
-from harness.study import errors, methods
+from harness.study import errors, ladder, methods, report
 
 FAILURE_KINDS = set(methods.KIND_CODES) - {"timeout"}
 
@@ -104,3 +104,21 @@ def test_real_time_timings_and_report(quick):
     text = (out / "report.md").read_text()
     assert "As accurate as the physics allows" in text and "Reference ensemble" in text
     assert (out / "wp_6000rpm.png").stat().st_size > 10000
+
+
+def test_report_shows_the_span_model_when_the_results_hold_it(quick, tmp_path):
+    """A comparison of python -m harness fidelity in the results: the report gets the fidelity
+    ladder's section and the work-precision chart the span model's point."""
+    _, r = quick
+    (scene,) = r["scenes"]
+    link = scene["reference"]["statistics"]
+    span = {k: dict(v, mean=1.02 * v["mean"]) for k, v in link.items()}
+    rows = ladder.compare(link, span, [ladder.Tolerance("tensioner.F.mean", 3.0, "%")])
+    comparison = dict(rpm=scene["rpm"], rows=rows, spanMeetsAll=True, recommendation="span",
+                      tolerances=["tensioner.F.mean=3%"], command="python -m harness fidelity --rpm 6000",
+                      link=dict(cycles=3, cpuPerSimulatedSecond=9.0), span=dict(cycles=3, cpuPerSimulatedSecond=0.1))
+    assert ladder.span_point(comparison)["error"] == pytest.approx(2.0)
+    report.write(tmp_path, dict(r, fidelity=[comparison]))
+    text = (tmp_path / "report.md").read_text()
+    assert "## Fidelity ladder: span model against link model" in text and "| tensioner.F.mean |" in text
+    assert (tmp_path / "wp_6000rpm.png").stat().st_size > 10000
