@@ -19,20 +19,6 @@ double cpuNow() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 // Angular speed of each rotor in the nominal motion (math sense) for a crankshaft speed
 // (running direction).
-std::vector<double> nominalRotorRates(const Model& m, double crankSpeed) {
-  std::vector<double> rates(m.rotors.size(), 0.0);
-  int ref = m.drivenRotor;
-  if (ref < 0)
-    for (std::size_t r = 0; r < m.rotors.size() && ref < 0; ++r)
-      if (m.rotors[r].isSprocket) ref = static_cast<int>(r);
-  const int zRef = m.sprockets[m.rotors[ref].element].gap.teeth;
-  for (std::size_t r = 0; r < m.rotors.size(); ++r) {
-    if (!m.rotors[r].isSprocket) continue;
-    const int z = m.sprockets[m.rotors[r].element].gap.teeth;
-    rates[r] = m.sense * crankSpeed * zRef / z;
-  }
-  return rates;
-}
 
 struct PinMotion {
   Vec2 v, a;
@@ -319,6 +305,21 @@ void finishReport(PreloadReport& report, int it, double rMax, const PreloadOptio
 }
 
 }  // namespace
+
+std::vector<double> nominalRotorRates(const Model& m, double crankSpeed) {
+  std::vector<double> rates(m.rotors.size(), 0.0);
+  int ref = m.drivenRotor;
+  if (ref < 0)
+    for (std::size_t r = 0; r < m.rotors.size() && ref < 0; ++r)
+      if (m.rotors[r].isSprocket) ref = static_cast<int>(r);
+  const int zRef = m.sprockets[m.rotors[ref].element].gap.teeth;
+  for (std::size_t r = 0; r < m.rotors.size(); ++r) {
+    if (!m.rotors[r].isSprocket) continue;
+    const int z = m.sprockets[m.rotors[r].element].gap.teeth;
+    rates[r] = m.sense * crankSpeed * zRef / z;
+  }
+  return rates;
+}
 
 std::vector<double> nominalState(const Model& m, double crankSpeed) {
   const int n = m.chain.links;

@@ -27,6 +27,10 @@ struct PreloadReport {
   std::string message;
 };
 
+/// Rotor rates of the nominal motion at the crankshaft speed (math sense): sprockets in the ratio
+/// of their teeth to the driven one's, guides at rest.
+std::vector<double> nominalRotorRates(const Model& m, double crankSpeed);
+
 /// The nominal (rigid, unstretched) pose with nominal velocities; energy accumulators zero.
 std::vector<double> nominalState(const Model& m, double crankSpeed);
 

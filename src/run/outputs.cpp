@@ -22,6 +22,21 @@ double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
   return std::nan("");
 }
 
+void finishRotorOutputs(const Model& m, const std::vector<double>& angle, const std::vector<double>& rate,
+                        Outputs& out) {
+  const std::vector<double>& sign = m.rotorOutputSign;
+  const std::size_t nr = m.rotors.size();
+  out.rotorAngle.resize(nr);
+  out.rotorRate.resize(nr);
+  for (std::size_t r = 0; r < nr; ++r) {
+    const RotorModel& ro = m.rotors[r];
+    out.rotorAngle[r] = sign[r] * (angle[r] - (ro.isSprocket ? ro.initialAngle : 0.0));
+    out.rotorRate[r] = sign[r] * rate[r];
+    out.rotorTorque[r] *= sign[r];
+  }
+  out.crankTorque = m.drivenRotor >= 0 ? out.rotorTorque[m.drivenRotor] : 0.0;
+}
+
 void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
                     Outputs& out, const RigidForces* rigid) {
   // the smooth forces at this state; rigid contacts and ideal joints carry the forces of the
@@ -50,11 +65,8 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
     }
   }
   // rotors: angles from their start, rates and the chain's torque on them, in the output sense
-  const std::vector<double>& sign = m.rotorOutputSign;
   const std::size_t nr = m.rotors.size();
   out.time = t;
-  out.rotorAngle.resize(nr);
-  out.rotorRate.resize(nr);
   out.rotorTorque.assign(nr, 0.0);
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& c = d.contacts[i];
@@ -62,14 +74,8 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
     const Vec2 f = c.fN * c.normal + c.fT * c.tangent;
     out.rotorTorque[c.rotor] -= cross(c.rRotor, f);
   }
-  for (std::size_t r = 0; r < nr; ++r) {
-    const RotorModel& ro = m.rotors[r];
-    out.rotorAngle[r] = sign[r] * (d.rotorAngle[r] - (ro.isSprocket ? ro.initialAngle : 0.0));
-    out.rotorRate[r] = sign[r] * d.rotorRate[r];
-    out.rotorTorque[r] *= sign[r];
-  }
+  finishRotorOutputs(m, d.rotorAngle, d.rotorRate, out);
   // tensioner and span forces
-  out.crankTorque = m.drivenRotor >= 0 ? out.rotorTorque[m.drivenRotor] : 0.0;
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;
   out.tensionerRate = d.tensionerRate;

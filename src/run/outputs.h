@@ -39,6 +39,12 @@ struct RigidForces {
 void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
                     Outputs& out, const RigidForces* rigid = nullptr);
 
+/// The rotor outputs from the rotors' angles and rates (math sense) and, in out.rotorTorque, the
+/// chain's torques on them (math sense): all turned into the output sense (outputs.h header), and
+/// the crankshaft torque. Shared by the link and span models.
+void finishRotorOutputs(const Model& m, const std::vector<double>& angle, const std::vector<double>& rate,
+                        Outputs& out);
+
 /// Force at a span probe, interpolated between the two joints that bracket it.
 double spanForce(const Model& m, const Data& d, const SpanProbe& probe);
 

@@ -51,7 +51,6 @@ void measureSeatingSlack(SpanModel& sm) {
     f1 = staticGuideAngle(sm, span, s1, rotor, rest) - target;
   }
   sm.spans[span].slack = s1;
-  sm.slack = s1;
   char line[200];
   std::snprintf(line, sizeof line, "seating slack %.4f mm in span %s: the tension guide at %.4f deg at rest, as in "
                 "the link model (residual %.1e deg)", s1 * 1e3, sm.spans[span].name.c_str(),

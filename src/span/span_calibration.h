@@ -12,7 +12,7 @@
 
 namespace chaindrive::span {
 
-/// Sets sm.slack and the tension guide's span slack; a note says what was measured. Drives
+/// Sets the slack of the tension guide's span; a note says what was measured. Drives
 /// without a tensioned pivoting guide keep no slack (a note says so).
 void measureSeatingSlack(SpanModel& sm);
 

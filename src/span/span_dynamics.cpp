@@ -87,13 +87,12 @@ void evaluateSpan(const SpanModel& m, SpanData& d, int i) {
   st.centrifugal = m.chainDensity * st.speed * st.speed;
   const double mu = m.guideFriction * st.speed / std::sqrt(st.speed * st.speed +
                                                            m.frictionRegularization * m.frictionRegularization);
-  double weighted = sp.parts[0], total = sp.parts[0];
+  double weighted = sp.parts[0];
   for (std::size_t k = 1; k < sp.parts.size(); ++k) {
     st.factor[k] = st.factor[k - 1] * std::exp(mu * sp.wraps[k - 1]);
     weighted += sp.parts[k] * st.factor[k];
-    total += sp.parts[k];
   }
-  st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * total / weighted;
+  st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * sp.partsLength / weighted;
   st.tensionTo = st.partTension(static_cast<int>(sp.parts.size()) - 1);
   // sprockets: the chain pulls the leaving end forwards, the arriving end backwards
   d.chainTorque[sp.from.rotor] += sense * st.tensionFrom * rA;

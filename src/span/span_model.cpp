@@ -159,6 +159,7 @@ Span buildSpan(const Model& m, const std::vector<RouteItem>& route, int a, int b
     sp.table = static_cast<int>(tables.size());
     tables.push_back(guideTable(m, a, b, r, guide, m.description.guides[route[r].index]));
   }
+  for (double part : sp.parts) sp.partsLength += part;
   sp.length0 = referenceLength(m.path, m.path, a, b);
   const ChainModel& ch = m.chain;
   sp.links = total / ch.pitch;

@@ -65,6 +65,7 @@ struct Span {
   double length0 = 0.0;       // [m] reference length at the assembled pose
   double slack = 0.0;         // [m] chain beyond the nominal path (see the header comment)
   std::vector<double> parts;  // [m] lengths of the free parts between guides (guides + 1 parts)
+  double partsLength = 0.0;   // [m] their sum
   std::vector<double> wraps;  // [rad] wrap angles of the guides in the span, running order
   int table = -1;             // guide table of its pivoting guide, -1: the span holds none
   int tableGuide = -1;        // index of that guide among the span's guides
@@ -91,7 +92,6 @@ struct SpanModel {
   double guideFriction = 0.0, frictionRegularization = 0.05;
   struct Probe { bool present = false; int span = -1, part = 0; } tightProbe, slackProbe;
   std::vector<double> monitoredStart;  // (links) path position of each link's centre at the start [m]
-  double slack = 0.0;            // [m] the seating slack measured from the link model (0: not measured)
   std::vector<std::string> notes;
 
   // state layout: the link model's rotor part (angle [, rate] per rotor) then input work and

@@ -47,19 +47,9 @@ void computeSpanOutputs(const SpanModel& m, SpanData& d, const InputSignal& in, 
   d.quasiStatic = false;
   evaluateSpanForces(m, d, in, t, y);
   const Model& lm = *m.links;
-  const std::size_t nr = lm.rotors.size();
   out.time = t;
-  out.rotorAngle.resize(nr);
-  out.rotorRate.resize(nr);
-  out.rotorTorque.resize(nr);
-  for (std::size_t r = 0; r < nr; ++r) {
-    const RotorModel& ro = lm.rotors[r];
-    const double sign = lm.rotorOutputSign[r];
-    out.rotorAngle[r] = sign * (d.rotorAngle[r] - (ro.isSprocket ? ro.initialAngle : 0.0));
-    out.rotorRate[r] = sign * d.rotorRate[r];
-    out.rotorTorque[r] = sign * d.chainTorque[r];
-  }
-  out.crankTorque = lm.drivenRotor >= 0 ? out.rotorTorque[lm.drivenRotor] : 0.0;
+  out.rotorTorque = d.chainTorque;  // same size after the first call: no allocation
+  finishRotorOutputs(lm, d.rotorAngle, d.rotorRate, out);
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;
   out.tensionerRate = d.tensionerRate;

@@ -91,14 +91,10 @@ namespace {
 std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
   const Model& lm = *m.links;
   std::vector<double> y(m.nStates, 0.0);
-  int zRef = 0;
-  for (const RotorModel& r : lm.rotors)
-    if (r.isSprocket && (r.prescribed || zRef == 0)) zRef = lm.sprockets[r.element].gap.teeth;
+  const std::vector<double> rates = nominalRotorRates(lm, crankSpeed);
   for (std::size_t r = 0; r < lm.rotors.size(); ++r) {
-    const RotorModel& ro = lm.rotors[r];
-    y[m.stateAngle[r]] = ro.initialAngle;
-    if (m.stateRate[r] >= 0 && ro.isSprocket)
-      y[m.stateRate[r]] = lm.sense * crankSpeed * zRef / lm.sprockets[ro.element].gap.teeth;
+    y[m.stateAngle[r]] = lm.rotors[r].initialAngle;
+    if (m.stateRate[r] >= 0) y[m.stateRate[r]] = rates[r];
   }
   return y;
 }
