@@ -5,6 +5,7 @@
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
     python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
+    python -m harness bench-realtime the link model's real-time factor through the FMU (harness/bench/realtime.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
     python -m harness tables         the SYNTHESIZED input tables (harness/tables/make_tables.py)
     python -m harness design-drive   the default drive (harness/drive/design.py)
@@ -30,6 +31,8 @@ COMMANDS = {
     "fidelity": ("harness.study.fidelity", "the span model against the link model within tolerances: "
                  "the cheapest fidelity that meets them"),
     "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),
+    "bench-realtime": ("harness.bench.realtime", "the link model's real-time factor and step-time spread through "
+                       "ChainDrive.fmu, its accuracy against a reference"),
     "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),
     "tables": ("harness.tables.make_tables", "generate the SYNTHESIZED camshaft-torque and crankshaft-speed tables"),
     "design-drive": ("harness.drive.design", "design the default drive (src/drives/default_drive.json)"),

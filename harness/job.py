@@ -93,7 +93,7 @@ def parameters_of(args):
 
 def run_closed(args, duration, torque, speed):
     """Master loop: inputs looked up at the FMU's own angles before every step. Returns (record,
-    CPU seconds spent inside fmi2DoStep)."""
+    CPU seconds spent inside each fmi2DoStep)."""
     s = fmu.Slave("chaindrive", parameters=parameters_of(args))
     n = int(round(duration / args.step))
     w0 = speed_at(speed, 0.0)
@@ -118,7 +118,7 @@ def run_closed(args, duration, torque, speed):
     prog.done()
     s.close()
     cols = ["time"] + names + ["input.crankshaft.w", "input.camshaftIntake.tau", "input.camshaftExhaust.tau"]
-    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpu
+    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
 
 
 def speed_at(speed, crank_deg):
@@ -215,6 +215,7 @@ class SceneRun:
     duration: float         # [s] simulated
     cpu: float              # [s] CPU time of the whole loop (FMU and master)
     step_cpu: float | None  # [s] CPU time inside fmi2DoStep (closed loop only)
+    step_cpus: list | None = None  # [s] the same per fmi2DoStep
 
     def cost(self, args):
         """What ran and its cost (run.json): CPU seconds per simulated second of the loop and of
@@ -243,8 +244,9 @@ def simulate(args):
     print(f"tables: {torque.path} ({torque.provenance})")
     cpu0 = time.process_time()
     loop = run_closed if args.coupling == "closed" else run_open
-    d, step_cpu = loop(args, duration, torque, speed)
-    return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpu)
+    d, step_cpus = loop(args, duration, torque, speed)
+    step_cpu = None if step_cpus is None else math.fsum(step_cpus)
+    return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpu, step_cpus)
 
 
 def cycle_statistics(args, scene_run):

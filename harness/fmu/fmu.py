@@ -46,7 +46,7 @@ class Slave:
         self.slave.instantiate(callbacks=self._callbacks, loggingOn=logging_on)
         self.parameters = dict(parameters or {})
         self.time = 0.0
-        self.step_cpu = 0.0  # [s] CPU time spent inside fmi2DoStep: the FMU's own cost, without the master's
+        self.step_cpus = []  # [s] CPU time inside each fmi2DoStep: the FMU's own cost, without the master's
 
     def _log(self, component, instance, status, category, message):
         self.messages.append((status, category.decode(), message.decode(errors="replace")))
@@ -90,8 +90,13 @@ class Slave:
         t = self.time if t is None else t
         cpu0 = time.process_time()
         self.slave.doStep(currentCommunicationPoint=t, communicationStepSize=h)
-        self.step_cpu += time.process_time() - cpu0
+        self.step_cpus.append(time.process_time() - cpu0)
         self.time = t + h
+
+    @property
+    def step_cpu(self):
+        """[s] CPU time inside fmi2DoStep over all steps."""
+        return math.fsum(self.step_cpus)
 
     def close(self):
         try:

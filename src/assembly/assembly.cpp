@@ -223,6 +223,7 @@ void buildSprockets(const DriveDescription& desc, Model& m, std::vector<std::str
     const double reach = s.gap.tipRadius + m.chain.rollerRadius;
     s.reach2 = reach * reach;
     for (int k = 0; k < sd.teeth; ++k) s.gapDirs.push_back(unit(k * s.gap.gapAngle));
+    for (int k = 0; k < sd.teeth; ++k) s.toothDirs.push_back(unit((k - 0.5) * s.gap.gapAngle));
     s.rotor = addRotor(m, sd.name, true, i, sd.center, sd.inertia, sd.prescribed);
     if (sd.prescribed) m.drivenRotor = s.rotor;
     m.sprockets.push_back(s);

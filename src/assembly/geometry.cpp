@@ -9,20 +9,24 @@ namespace chaindrive {
 namespace {
 
 // Closest point on an arc (centre, radius, counterclockwise range) to p.
+// (Square roots only where a distance is kept: a profile query runs for every roller near a
+// sprocket at every evaluation.)
 void closestOnArc(const ArcRange& a, Vec2 p, Vec2 end0, Vec2 end1, double& bestDist, Vec2& bestPoint) {
   const Vec2 d = p - a.center;
-  const double r = norm(d);
-  if (r > 0.0 && a.contains(d)) {
-    const double dist = std::fabs(r - a.radius);
-    if (dist < bestDist) {
-      bestDist = dist;
-      bestPoint = a.center + (a.radius / r) * d;
+  if (a.contains(d)) {
+    const double r = norm(d);
+    if (r > 0.0) {
+      const double dist = std::fabs(r - a.radius);
+      if (dist < bestDist) {
+        bestDist = dist;
+        bestPoint = a.center + (a.radius / r) * d;
+      }
+      return;
     }
-    return;
   }
-  const double d0 = norm(p - end0), d1 = norm(p - end1);
-  if (d0 < bestDist) { bestDist = d0; bestPoint = end0; }
-  if (d1 < bestDist) { bestDist = d1; bestPoint = end1; }
+  const double q0 = norm2(p - end0), q1 = norm2(p - end1);
+  if (q0 < bestDist * bestDist) { bestDist = std::sqrt(q0); bestPoint = end0; }
+  if (q1 < bestDist * bestDist) { bestDist = std::sqrt(q1); bestPoint = end1; }
 }
 
 }  // namespace
@@ -170,16 +174,35 @@ FaceHit nearerCorner(Vec2 c0, Vec2 c1, Vec2 e0, Vec2 e1, Vec2 nOut) {
 
 }  // namespace
 
-FaceHit plateEdgeFaceContact(const GuideFace& f, Vec2 pivot, double c, double s, Vec2 e0, Vec2 e1, Vec2 nOut) {
+PlacedFace placeFace(const GuideFace& f, Vec2 pivot, double c, double s) {
+  PlacedFace p;
+  p.face = &f;
+  p.c = c;
+  p.s = s;
+  if (f.type == GuideFace::Type::Line) {
+    p.from = pivot + rotate(f.from - pivot, c, s);
+    p.to = pivot + rotate(f.to - pivot, c, s);
+    p.normal = rotate(f.lineNormal, c, s);
+    p.dir = rotate((1.0 / f.lineLength) * (f.to - f.from), c, s);
+    p.corner0 = p.from;
+    p.corner1 = p.to;
+  } else {
+    p.center = pivot + rotate(f.arc.center - pivot, c, s);
+    p.corner0 = p.center + f.arc.radius * rotate(f.arc.dir0, c, s);
+    p.corner1 = p.center + f.arc.radius * rotate(f.arc.dir1, c, s);
+  }
+  return p;
+}
+
+FaceHit plateEdgeFaceContact(const PlacedFace& pf, Vec2 e0, Vec2 e1, Vec2 nOut) {
   // Inside a face's extent the gap is measured to the face; beyond it, to the face's end
   // corners, so that the gap and the force stay continuous where a link leaves the guide.
+  const GuideFace& f = *pf.face;
   FaceHit hit;
   switch (f.type) {
     case GuideFace::Type::ConvexArc:
     case GuideFace::Type::ConcaveArc: {
-      const Vec2 center = pivot + rotate(f.arc.center - pivot, c, s);
-      const Vec2 corner0 = center + f.arc.radius * rotate(f.arc.dir0, c, s);
-      const Vec2 corner1 = center + f.arc.radius * rotate(f.arc.dir1, c, s);
+      const Vec2 center = pf.center;
       Vec2 q;
       if (f.type == GuideFace::Type::ConvexArc) {
         const Vec2 seg = e1 - e0;
@@ -192,7 +215,7 @@ FaceHit plateEdgeFaceContact(const GuideFace& f, Vec2 pivot, double c, double s,
       const Vec2 d = q - center;
       const double r = norm(d);
       if (r <= 0.0) return hit;
-      if (!f.arc.contains(rotate(d, c, -s))) return nearerCorner(corner0, corner1, e0, e1, nOut);
+      if (!f.arc.contains(rotate(d, pf.c, -pf.s))) return nearerCorner(pf.corner0, pf.corner1, e0, e1, nOut);
       hit.valid = true;
       hit.point = q;
       if (f.type == GuideFace::Type::ConvexArc) {
@@ -205,14 +228,11 @@ FaceHit plateEdgeFaceContact(const GuideFace& f, Vec2 pivot, double c, double s,
       return hit;
     }
     case GuideFace::Type::Line: {
-      const Vec2 a = pivot + rotate(f.from - pivot, c, s);
-      const Vec2 b = pivot + rotate(f.to - pivot, c, s);
-      const Vec2 n = rotate(f.lineNormal, c, s);
-      const Vec2 dir = rotate((1.0 / f.lineLength) * (f.to - f.from), c, s);
+      const Vec2 a = pf.from, n = pf.normal;
       const double d0 = dot(e0 - a, n), d1 = dot(e1 - a, n);
       const Vec2 q = d0 <= d1 ? e0 : e1;
-      const double along = dot(q - a, dir);
-      if (along < 0.0 || along > f.lineLength) return nearerCorner(a, b, e0, e1, nOut);
+      const double along = dot(q - a, pf.dir);
+      if (along < 0.0 || along > f.lineLength) return nearerCorner(a, pf.to, e0, e1, nOut);
       hit.valid = true;
       hit.gap = std::min(d0, d1);
       hit.point = q;
@@ -223,14 +243,23 @@ FaceHit plateEdgeFaceContact(const GuideFace& f, Vec2 pivot, double c, double s,
   return hit;
 }
 
-Vec2 faceNormalNear(const GuideFace& f, Vec2 pivot, double c, double s, Vec2 p) {
-  if (f.type == GuideFace::Type::Line) return rotate(f.lineNormal, c, s);
-  const Vec2 center = pivot + rotate(f.arc.center - pivot, c, s);
-  Vec2 d = p - center;
-  const double r = norm(d);
-  if (r <= 0.0) return Vec2{0.0, 1.0};
-  d = (1.0 / r) * d;
+Vec2 faceOutwardNear(const PlacedFace& pf, Vec2 p) {
+  const GuideFace& f = *pf.face;
+  if (f.type == GuideFace::Type::Line) return pf.normal;
+  const Vec2 d = p - pf.center;
+  if (d.x == 0.0 && d.y == 0.0) return Vec2{0.0, 1.0};
   return f.type == GuideFace::Type::ConvexArc ? d : -1.0 * d;
+}
+
+bool faceNear(const PlacedFace& pf, Vec2 p, double reach) {
+  const double reach2 = 4.0 * reach * reach;  // (2 reach)^2
+  if (norm2(p - pf.corner0) <= reach2 || norm2(p - pf.corner1) <= reach2) return true;
+  const GuideFace& f = *pf.face;
+  if (f.type == GuideFace::Type::Line) {
+    const double along = dot(p - pf.from, pf.dir);
+    return along >= -2.0 * reach && along <= f.lineLength + 2.0 * reach && std::fabs(dot(p - pf.from, pf.normal)) <= 2.0 * reach;
+  }
+  return std::fabs(norm(p - pf.center) - f.arc.radius) <= 2.0 * reach;
 }
 
 }  // namespace chaindrive

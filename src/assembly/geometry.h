@@ -65,11 +65,26 @@ struct FaceHit {
   Vec2 normal;          // unit face normal towards the chain
 };
 
-/// Contact of the plate edge segment e0-e1 (outward normal nOut, towards the guide) with a face
-/// placed by the rotation (c, s) about `pivot`. Beyond the face's extent the face's end corners
-/// are the contact points, so the gap is continuous along the guide.
-FaceHit plateEdgeFaceContact(const GuideFace& face, Vec2 pivot, double c, double s, Vec2 e0, Vec2 e1, Vec2 nOut);
-/// Rough outward normal of a face near a point (world), used to pick the plate edge facing it.
-Vec2 faceNormalNear(const GuideFace& face, Vec2 pivot, double c, double s, Vec2 p);
+/// A face placed by the rotation (c, s) about `pivot` (world coordinates), computed once per
+/// evaluation for every link that comes near it.
+struct PlacedFace {
+  const GuideFace* face = nullptr;
+  double c = 1.0, s = 0.0;
+  Vec2 center;                    // arcs
+  Vec2 corner0, corner1;          // end points
+  Vec2 from, to, normal, dir;     // lines: end points (= corners), normal to the chain side, unit direction
+};
+PlacedFace placeFace(const GuideFace& face, Vec2 pivot, double c, double s);
+
+/// Contact of the plate edge segment e0-e1 (outward normal nOut, towards the guide) with a
+/// placed face. Beyond the face's extent the face's end corners are the contact points, so the
+/// gap is continuous along the guide.
+FaceHit plateEdgeFaceContact(const PlacedFace& face, Vec2 e0, Vec2 e1, Vec2 nOut);
+/// Outward direction (not of unit length) of a placed face near a point (world), used to pick
+/// the plate edge facing it.
+Vec2 faceOutwardNear(const PlacedFace& face, Vec2 p);
+/// False when no point within `reach` of p can be closer than `reach` to the placed face (its
+/// arc circle or line and its end corners): the cheap test before the contact query.
+bool faceNear(const PlacedFace& face, Vec2 p, double reach);
 
 }  // namespace chaindrive

@@ -45,6 +45,7 @@ struct SprocketModel {
   ToothGap gap;
   double reach2 = 0.0;        // (tip radius + roller radius)^2: rollers beyond cannot touch
   std::vector<Vec2> gapDirs;  // (cos, sin) of k * 2 pi / z, k = 0..z-1
+  std::vector<Vec2> toothDirs;  // (cos, sin) of (k - 1/2) 2 pi / z: the tooth axis before gap k
 };
 
 struct GuideModel {

@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sincos.h"
+
 namespace chaindrive {
 
 LinkKin linkKinematics(const ChainModel& ch, const double* s) {
   LinkKin k;
   k.c = Vec2{s[0], s[1]};
-  k.e = Vec2{std::cos(s[2]), std::sin(s[2])};
+  sinCos(s[2], k.e.y, k.e.x);
   k.v = Vec2{s[3], s[4]};
   k.w = s[5];
   const Vec2 half = (0.5 * ch.pitch) * k.e;
@@ -27,24 +29,51 @@ void evaluateKinematics(const Model& m, Data& d, const double* y) {
     const RotorModel& ro = m.rotors[r];
     const double a = y[ro.stateAngle];
     d.rotorAngle[r] = a;
-    d.rotorCos[r] = std::cos(a);
-    d.rotorSin[r] = std::sin(a);
+    sinCos(a, d.rotorSin[r], d.rotorCos[r]);
     d.rotorRate[r] = ro.prescribed ? m.sense * d.inputs.crankSpeed : y[ro.stateRate];
   }
 }
 
+namespace {
+
+// The tooth gap whose sector (from the tooth axis before it to the one after it) holds the
+// direction `body` (sprocket frame), walked to from `guess`. The sectors partition the plane
+// exactly (one cross product decides between two neighbours), so the gap found does not depend
+// on the guess: a guess only saves the search (and the atan2 a first guess costs).
+int gapOf(const SprocketModel& s, Vec2 body, int guess) {
+  const int z = s.gap.teeth;
+  int k = guess;
+  if (k < 0 || k >= z) {
+    k = static_cast<int>(std::lround(std::atan2(body.y, body.x) / s.gap.gapAngle)) % z;
+    if (k < 0) k += z;
+  }
+  for (int i = 0; i < z; ++i) {
+    if (cross(s.toothDirs[k], body) < 0.0) {
+      k = k == 0 ? z - 1 : k - 1;
+      continue;
+    }
+    const int next = k + 1 == z ? 0 : k + 1;
+    if (cross(body, s.toothDirs[next]) <= 0.0) {
+      k = next;
+      continue;
+    }
+    break;
+  }
+  return k;
+}
+
+}  // namespace
+
 bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double /*angle*/,
-                              double cosA, double sinA, double rate, double margin, ContactPoint& cp) {
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp, int* gapHint) {
   const SprocketModel& s = m.sprockets[sprocket];
   const Vec2 p = end == 0 ? lk.rear : lk.front;
   const Vec2 rel = p - s.center;
   if (norm2(rel) > s.reach2) return false;
-  // roller centre in the sprocket frame, then in the frame of the nearest tooth gap
+  // roller centre in the sprocket frame, then in the frame of its tooth gap
   const Vec2 body = rotate(rel, cosA, -sinA);
-  const int z = s.gap.teeth;
-  int k = static_cast<int>(std::lround(std::atan2(body.y, body.x) / s.gap.gapAngle));
-  k %= z;
-  if (k < 0) k += z;
+  const int k = gapOf(s, body, gapHint ? *gapHint : -1);
+  if (gapHint) *gapHint = k;
   const Vec2 gd = s.gapDirs[k];
   const Vec2 local = rotate(body, gd.x, -gd.y);
   const ProfileHit hit = s.gap.closest(local);
@@ -76,12 +105,17 @@ bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, c
 bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
                           double rate, double margin, ContactPoint& cp) {
   const GuideModel& g = m.guides[guide];
-  const GuideFace& f = g.faces[face];
-  const Vec2 nNear = faceNormalNear(f, g.pivot, cosA, sinA, lk.c);
+  return plateGuideKinematics(m, guide, face, placeFace(g.faces[face], g.pivot, cosA, sinA), link, lk, rate, margin, cp);
+}
+
+bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace& pf, int link, const LinkKin& lk,
+                          double rate, double margin, ContactPoint& cp) {
+  const GuideModel& g = m.guides[guide];
+  const Vec2 outward = faceOutwardNear(pf, lk.c);
   const Vec2 side = perp(lk.e);
-  const double sgn = dot(side, nNear) > 0.0 ? -1.0 : 1.0;  // the plate edge that faces the guide
+  const double sgn = dot(side, outward) > 0.0 ? -1.0 : 1.0;  // the plate edge that faces the guide
   const Vec2 off = (sgn * m.chain.plateHalfHeight) * side;
-  const FaceHit hit = plateEdgeFaceContact(f, g.pivot, cosA, sinA, lk.rear + off, lk.front + off, sgn * side);
+  const FaceHit hit = plateEdgeFaceContact(pf, lk.rear + off, lk.front + off, sgn * side);
   if (!hit.valid || hit.gap >= margin) return false;
   cp.kind = ContactPoint::Kind::PlateGuide;
   cp.link = link;
@@ -106,32 +140,40 @@ void detectContacts(const Model& m, Data& d, double margin) {
   const int n = m.chain.links;
   const int cap = static_cast<int>(d.contacts.size());
   int count = 0;
-  // rollers sit on the inner links (even index), one at each end
+  // rollers sit on the inner links (even index), one at each end; most are far from every
+  // sprocket, which one distance test tells
+  const std::size_t nSprockets = m.sprockets.size();
   for (int i = 0; i < n; i += 2) {
     const LinkKin& lk = d.links[i];
     for (int end = 0; end < 2; ++end) {
-      for (std::size_t s = 0; s < m.sprockets.size(); ++s) {
-        const int r = m.sprockets[s].rotor;
-        if (count < cap && rollerSprocketKinematics(m, static_cast<int>(s), i, end, lk, d.rotorAngle[r], d.rotorCos[r],
-                                                    d.rotorSin[r], d.rotorRate[r], margin, d.contacts[count]))
+      const Vec2 roller = end == 0 ? lk.rear : lk.front;
+      for (std::size_t s = 0; s < nSprockets; ++s) {
+        const SprocketModel& sp = m.sprockets[s];
+        if (norm2(roller - sp.center) > sp.reach2 || count >= cap) continue;
+        const int r = sp.rotor;
+        if (rollerSprocketKinematics(m, static_cast<int>(s), i, end, lk, d.rotorAngle[r], d.rotorCos[r], d.rotorSin[r],
+                                     d.rotorRate[r], margin, d.contacts[count], &d.gapHints[(i + end) * nSprockets + s]))
           ++count;
       }
     }
   }
-  const double reachLink = 0.5 * m.chain.pitch + m.chain.plateHalfHeight + std::fabs(margin);
+  // a plate edge lies within reachLink of its link's centre
+  const double reachLink = std::hypot(0.5 * m.chain.pitch, m.chain.plateHalfHeight) + std::fabs(margin);
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
     const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
     const double sinA = g.rotor >= 0 ? d.rotorSin[g.rotor] : 0.0;
     const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
     const Vec2 bc = g.pivot + rotate(g.boundCenter - g.pivot, cosA, sinA);
-    const double reach = g.boundRadius + reachLink;
+    const double reach = g.boundRadius + 2.0 * reachLink;
+    const std::size_t nFaces = std::min(g.faces.size(), d.placedFaces.size());
+    for (std::size_t f = 0; f < nFaces; ++f) d.placedFaces[f] = placeFace(g.faces[f], g.pivot, cosA, sinA);
     for (int i = 0; i < n; ++i) {
       const LinkKin& lk = d.links[i];
       if (norm2(lk.c - bc) > reach * reach) continue;
-      for (std::size_t f = 0; f < g.faces.size(); ++f)
-        if (count < cap &&
-            plateGuideKinematics(m, static_cast<int>(gi), static_cast<int>(f), i, lk, cosA, sinA, rate, margin,
+      for (std::size_t f = 0; f < nFaces; ++f)
+        if (count < cap && faceNear(d.placedFaces[f], lk.c, reachLink) &&
+            plateGuideKinematics(m, static_cast<int>(gi), static_cast<int>(f), d.placedFaces[f], i, lk, rate, margin,
                                  d.contacts[count]))
           ++count;
     }

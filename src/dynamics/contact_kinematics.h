@@ -19,11 +19,17 @@ void evaluateKinematics(const Model& m, Data& d, const double* y);
 
 /// Roller of link `link` at end (0 rear, 1 front) against a sprocket turned to `angle` (with
 /// cos/sin given) at angular velocity `rate`. True (and cp filled) when the gap is below margin.
+/// `gapHint` (optional, in and out): the roller's tooth gap on this sprocket at the last call, a
+/// starting guess that makes finding the gap cheap; the result does not depend on it.
 bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double angle,
-                              double cosA, double sinA, double rate, double margin, ContactPoint& cp);
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp,
+                              int* gapHint = nullptr);
 
 /// Plate edge of link `link` against face `face` of a guide turned by `angle` about its pivot.
 bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
+                          double rate, double margin, ContactPoint& cp);
+/// The same with the face already placed (placeFace) at the guide's angle.
+bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace& pf, int link, const LinkKin& lk,
                           double rate, double margin, ContactPoint& cp);
 
 /// Tunnelling check: true if some contact of `contacts[0..n)` penetrates deeper than `limit`

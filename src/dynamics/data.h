@@ -83,6 +83,9 @@ struct Data {
   std::vector<double> rotorCos, rotorSin;     // (rotors)
   std::vector<JointState> joints;             // (links) joint j: link j front pin - link j+1 rear pin
   std::vector<ContactPoint> contacts;         // capacity fixed at construction
+  std::vector<PlacedFace> placedFaces;        // (most faces of a guide) a guide's faces at its angle
+  std::vector<int> gapHints;                  // (rollers x sprockets) tooth gap found last: a search
+                                              // guess only (results never depend on it)
   int nContacts = 0;
   std::vector<double> gen;                    // (nGen) generalized forces
   // tensioner

@@ -20,10 +20,15 @@ Data::Data(const Model& m) {
   rotorCos.assign(m.rotors.size(), 1.0);
   rotorSin.assign(m.rotors.size(), 0.0);
   joints.resize(m.chain.links);
-  std::size_t faces = 0;
-  for (const auto& g : m.guides) faces += g.faces.size();
+  std::size_t faces = 0, mostFaces = 0;
+  for (const auto& g : m.guides) {
+    faces += g.faces.size();
+    mostFaces = std::max(mostFaces, g.faces.size());
+  }
+  placedFaces.resize(mostFaces);
   contacts.resize(static_cast<std::size_t>(m.chain.links) * (m.sprockets.size() + faces));
   gen.assign(m.nGen, 0.0);
+  gapHints.assign((m.chain.links + 1) * m.sprockets.size(), -1);
 }
 
 // Stages 1-5 of dynamics.h, the generalized forces summed into d.gen and the powers kept.
@@ -99,21 +104,6 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
   e.inputWork = y[m.stateInputWork];
   e.dissipated = y[m.stateDissipated];
   return e;
-}
-
-StateHealth checkState(const Model& m, const Data& d, const double* y) {
-  StateHealth h;
-  for (int i = 0; i < m.nStates; ++i)
-    if (!std::isfinite(y[i])) {
-      h.finite = false;
-      return h;
-    }
-  for (int j = 0; j < m.chain.links; ++j)
-    if (d.joints[j].deformation > h.maxJointDeformation) {
-      h.maxJointDeformation = d.joints[j].deformation;
-      h.worstJoint = j;
-    }
-  return h;
 }
 
 }  // namespace chaindrive

@@ -39,12 +39,4 @@ struct EnergyTerms {
 /// Energy terms at state y (after a forward evaluation at the same state).
 EnergyTerms energyTerms(const Model& m, const Data& d, const double* y);
 
-/// Largest joint deformation [m] and a finite-state check; used to detect blow-up.
-struct StateHealth {
-  bool finite = true;
-  double maxJointDeformation = 0.0;
-  int worstJoint = -1;
-};
-StateHealth checkState(const Model& m, const Data& d, const double* y);
-
 }  // namespace chaindrive

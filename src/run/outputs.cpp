@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "dynamics/contact_compliant.h"
+#include "dynamics/joint_forces.h"
 
 namespace chaindrive {
 
@@ -44,6 +45,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   d.compliantContacts = rigid == nullptr;
   d.jointForces = rigid == nullptr || rigid->joints == nullptr;
   generalizedForces(m, d, in, t, y);
+  if (d.jointForces) measureJoints(m, d);
   if (rigid && rigid->contacts) {
     d.nContacts = 0;
     for (const ContactPoint& c : *rigid->contacts) {
@@ -58,9 +60,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
     for (int j = 0; j < n; ++j) {
       JointState& js = d.joints[j];
       js.force = Vec2{(*rigid->joints)[2 * j], (*rigid->joints)[2 * j + 1]};
-      const Vec2 axis = d.links[j].e + d.links[(j + 1) % n].e;
-      const double an = norm(axis);
-      js.tension = an > 0.0 ? dot(js.force, (1.0 / an) * axis) : 0.0;
+      js.tension = jointTension(d.links[j], d.links[(j + 1) % n], js.force);
       js.deformation = norm(d.links[j].front - d.links[(j + 1) % n].rear);
     }
   }

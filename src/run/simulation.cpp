@@ -5,6 +5,7 @@
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/health.h"
+#include "dynamics/joint_forces.h"
 #include "span/span_outputs.h"
 
 namespace chaindrive {
@@ -29,12 +30,10 @@ DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, 
 int DriveSystem::rhs(double t, const double* y, double* ydot) noexcept {
   try {
     forwardCompliant(*model_, data_, in_, t, y, ydot);
-    const int n = model_->nStates;
-    for (int i = 0; i < n; ++i)
-      if (!std::isfinite(ydot[i])) {
-        lastError_ = {FailureKind::NonFinite, "non-finite derivative"};
-        return 1;  // recoverable: the integrator retries with a smaller step
-      }
+    if (!allFinite(ydot, model_->nStates)) {
+      lastError_ = {FailureKind::NonFinite, "non-finite derivative"};
+      return 1;  // recoverable: the integrator retries with a smaller step
+    }
     return 0;
   } catch (const std::exception& e) {
     lastError_ = {FailureKind::Other, e.what()};
@@ -78,8 +77,11 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
   // cheap enough for every fixed step: finiteness of the state, and the joint deformations of
   // the last right-hand-side evaluation (at or next to this state)
   const Model& m = *model_;
-  return finiteState(y, m.nStates, why) &&
-         chainHealthy(m, health_, [&](int j) { return data_.joints[j].deformation; }, data_.contacts.data(),
+  if (!finiteState(y, m.nStates, why)) return false;
+  if (jointsWithin(m, data_, health_.blowUpDeformation * m.chain.pitch))
+    return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.rollerRadius, t, why);
+  measureJoints(m, data_);  // some joint is opened too far: which, and by how much
+  return chainHealthy(m, health_, [&](int j) { return data_.joints[j].deformation; }, data_.contacts.data(),
                       data_.nContacts, t, why);
 }
 

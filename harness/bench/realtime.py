@@ -1,0 +1,129 @@
+"""Real-time benchmark of the link model through ChainDrive.fmu: the CPU time inside fmi2DoStep per
+simulated second (the real-time factor a hardware-in-the-loop rig sees), its spread over the
+communication steps, and the accuracy of the same runs against a reference, at each speed.
+
+    python -m harness bench-realtime [--rpm 3000 6000] [--cycles 24] [--method fixed-verlet]
+                                     [--solver-step S] [--reference RPM=SUMMARY.json ...]
+                                     [--out results/benchmark_realtime.md]
+
+Each speed runs the main job (harness/job.py: ChainDrive.fmu in closed loop with the measured-torque
+tables at 0.1 ms communication steps, after its run-in) and reads the CPU time of every
+fmi2DoStep; the master's own Python loop is not counted (a rig's master is not Python). Printed
+per speed: the real-time factor RTF = CPU s inside fmi2DoStep per simulated s, and the CPU time
+per fmi2DoStep (median, p99, max; p99 / median and max / median), each against its target
+(TARGETS). With a reference for the speed (the summary.json of `python -m harness run --out DIR`,
+for example a long run at a small step), the accuracy table: per quantity the reference and this
+run with their 95 % half-widths over engine cycles, the difference and the tolerance (TOLERANCES).
+The machine heads the report, which is also written as Markdown to --out. Run nothing else on
+the machine meanwhile: CPU timings of shared cores are noisy (compare medians and ratios of one run).
+"""
+import argparse
+import json
+import pathlib
+
+import numpy as np
+
+from .. import job, paths, runs
+from ..study import ladder
+
+# real-time factor targets per speed [CPU s per simulated s inside fmi2DoStep]; spread targets
+RTF_TARGET = {3000.0: 1.0, 6000.0: 1.5}
+P99_TARGET, MAX_TARGET = 1.5, 3.0  # p99 / median and max / median of the CPU per fmi2DoStep
+# the accuracy a real-time method must keep against the reference
+TOLERANCES = ("tensioner.F.mean=2%", "chain.Ftight.mean=2%", "chain.Fslack.mean=2%",
+              "tensionGuide.phi.peakToPeak_deg=10%", "tensioner.F.order2=3dB", "tensioner.F.order4=3dB",
+              "tensioner.F.order6=3dB", "tensioner.F.order8=3dB")
+
+
+def add_arguments(ap):
+    ap.add_argument("--rpm", type=float, nargs="+", default=[3000.0, 6000.0], help="engine speeds [rpm]")
+    ap.add_argument("--cycles", type=int, default=24, help="engine cycles counted after the run-in")
+    ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")
+    ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: the job's)")
+    ap.add_argument("--reference", action="append", default=[], metavar="RPM=SUMMARY",
+                    help="summary.json of a reference run at that speed (repeatable)")
+    ap.add_argument("--out", default=str(paths.RESULTS / "benchmark_realtime.md"))
+
+
+def check(ap, args):
+    args.references = {}
+    for spec in args.reference:
+        rpm, sep, path = spec.partition("=")
+        try:
+            args.references[float(rpm)] = json.loads(pathlib.Path(path).read_text())
+        except ValueError:
+            ap.error(f"--reference {spec!r}: not RPM=SUMMARY.json with a number and a summary of python -m harness run")
+        except OSError as e:
+            ap.error(f"--reference {spec!r}: {e}")
+        if not sep:
+            ap.error(f"--reference {spec!r}: not of the form RPM=SUMMARY.json")
+    if args.cycles < 2:
+        ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
+    return args
+
+
+def scene_args(args, rpm):
+    """The main job's options at one speed."""
+    ap = argparse.ArgumentParser(prog="python -m harness run")
+    job.add_arguments(ap)
+    argv = ["--rpm", repr(rpm), "--cycles", str(args.cycles), "--method", args.method]
+    argv += ["--solver-step", repr(args.solver_step)] if args.solver_step else []
+    return job.check(ap, ap.parse_args(argv))
+
+
+def timing(scene_run):
+    """RTF and the spread of the CPU per fmi2DoStep (the first step, which carries the start, left out)."""
+    cpu = np.array(scene_run.step_cpus[1:])
+    median = float(np.median(cpu))
+    return dict(rtf=scene_run.step_cpu / scene_run.duration, steps=len(cpu), median=median,
+                p99=float(np.percentile(cpu, 99)), max=float(cpu.max()))
+
+
+def verdict(ok):
+    return "meets" if ok else "MISSES"
+
+
+def timing_lines(rpm, t, step):
+    target = RTF_TARGET.get(rpm)
+    p99, mx = t["p99"] / t["median"], t["max"] / t["median"]
+    rtf_verdict = f" (target <= {target:g}: {verdict(t['rtf'] <= target)})" if target else ""
+    return [f"- RTF (CPU s inside fmi2DoStep per simulated s): **{t['rtf']:.3g}**{rtf_verdict}",
+            f"- CPU per fmi2DoStep of {step * 1e3:g} ms over {t['steps']} steps: median {t['median'] * 1e6:.0f} us, "
+            f"p99 {t['p99'] * 1e6:.0f} us, max {t['max'] * 1e6:.0f} us; p99 / median {p99:.2f} (target <= "
+            f"{P99_TARGET:g}: {verdict(p99 <= P99_TARGET)}), max / median {mx:.2f} (target <= {MAX_TARGET:g}: "
+            f"{verdict(mx <= MAX_TARGET)})"]
+
+
+def accuracy_lines(reference, summary):
+    keys = list(summary)
+    tolerances = [ladder.parse_tolerance(t, keys) for t in TOLERANCES]
+    rows = ladder.compare(reference, summary, tolerances)
+    lines = ["| quantity | reference | this run | difference | tolerance | meets | within scatter |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        ref, run = r["link"], r["span"]
+        lines.append(f"| {r['key']} | {ref['mean']:.4g} +- {ref['ci95']:.2g} {r['unit']} ({ref['cycles']} cycles) | "
+                     f"{run['mean']:.4g} +- {run['ci95']:.2g} {r['unit']} ({run['cycles']} cycles) | "
+                     f"{r['difference']:+.2f} {r['differenceUnit']} | {r['tolerance']:g} {r['differenceUnit']} | "
+                     f"{'yes' if r['meets'] else 'NO'} | {'yes' if r['withinScatter'] else 'no'} (z {r['z']:+.2f}) |")
+    return lines
+
+
+def run(args):
+    lines = ["# Real-time benchmark: the link model through ChainDrive.fmu", "",
+             f"Machine: {runs.machine()}; command: python -m harness bench-realtime {' '.join(args.argv)}", ""]
+    print("\n".join(lines))
+    for rpm in args.rpm:
+        a = scene_args(args, rpm)
+        scene_run = job.simulate(a)
+        _, summary = job.cycle_statistics(a, scene_run)
+        section = [f"## {rpm:g} rpm: {a.method} at {a.solver_step * 1e6:g} us, closed loop, {args.cycles} cycles "
+                   f"after {scene_run.run_in} run-in", ""]
+        section += timing_lines(rpm, timing(scene_run), a.step) + [""]
+        reference = args.references.get(rpm)
+        if reference:
+            section += accuracy_lines(reference, summary) + [""]
+        print("\n".join(section))
+        lines += section
+    runs.write_lines(args.out, lines)
+    return 0

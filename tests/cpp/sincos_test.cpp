@@ -1,0 +1,53 @@
+#include "sincos.h"
+#include "vec2.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace chaindrive {
+namespace {
+
+// distance in units in the last place of the reference
+double ulps(double value, double reference) {
+  const double ulp = std::nextafter(std::fabs(reference), INFINITY) - std::fabs(reference);
+  return std::fabs(value - reference) / ulp;
+}
+
+TEST(SinCos, WithinTwoUlpOfLibmOverTheRangeOfLinkAngles) {
+  std::mt19937_64 rng(7);
+  for (double range : {1.0, 10.0, 1e3, 1e6}) {
+    std::uniform_real_distribution<double> angle(-range, range);
+    double worstSin = 0.0, worstCos = 0.0;
+    for (int i = 0; i < 200000; ++i) {
+      const double x = angle(rng);
+      double s = 0.0, c = 0.0;
+      sinCos(x, s, c);
+      worstSin = std::max(worstSin, ulps(s, std::sin(x)));
+      worstCos = std::max(worstCos, ulps(c, std::cos(x)));
+    }
+    EXPECT_LE(worstSin, 2.0) << "range " << range;
+    EXPECT_LE(worstCos, 2.0) << "range " << range;
+  }
+}
+
+TEST(SinCos, QuadrantsAndSpecialValues) {
+  for (int k = -8; k <= 8; ++k) {
+    double s = 0.0, c = 0.0;
+    sinCos(k * 0.5 * kPi, s, c);
+    EXPECT_NEAR(s, std::sin(k * 0.5 * kPi), 1e-15) << k;
+    EXPECT_NEAR(c, std::cos(k * 0.5 * kPi), 1e-15) << k;
+  }
+  double s = 1.0, c = 1.0;
+  sinCos(0.0, s, c);
+  EXPECT_EQ(s, 0.0);
+  EXPECT_EQ(c, 1.0);
+  sinCos(std::nan(""), s, c);
+  EXPECT_TRUE(std::isnan(s) && std::isnan(c));
+  sinCos(1e9, s, c);  // beyond the reduction's range: libm
+  EXPECT_EQ(s, std::sin(1e9));
+}
+
+}  // namespace
+}  // namespace chaindrive

@@ -1,0 +1,60 @@
+"""The real-time benchmark (harness/bench/realtime.py): its figures from the CPU time of every
+fmi2DoStep, its accuracy table against a reference, its option checks, and one short run."""
+import argparse
+import json
+
+import pytest
+
+from harness import cli, job
+from harness.bench import realtime
+
+
+def parse(argv):
+    ap = argparse.ArgumentParser()
+    realtime.add_arguments(ap)
+    return realtime.check(ap, ap.parse_args(argv))
+
+
+def test_timing_leaves_out_the_first_step_and_gives_the_spread():
+    # the first step carries the start; 100 steps of 1 ms and one of 3 ms over 0.0102 s simulated
+    run = job.SceneRun(record={}, run_in=0, duration=0.0102, cpu=1.0, step_cpus=[0.5] + [1e-3] * 100 + [3e-3],
+                       step_cpu=0.5 + 0.1 + 3e-3)
+    t = realtime.timing(run)
+    assert t["steps"] == 101
+    assert t["median"] == pytest.approx(1e-3)
+    assert t["max"] == pytest.approx(3e-3)
+    assert t["rtf"] == pytest.approx(0.603 / 0.0102)
+    lines = "\n".join(realtime.timing_lines(3000.0, t, 1e-4))
+    assert "MISSES" in lines and "max / median 3.00" in lines
+
+
+def test_accuracy_table_of_a_run_against_itself_meets_every_tolerance():
+    summary = {k: dict(mean=10.0 + i, ci95=0.5, cycles=24, unit="N")
+               for i, k in enumerate(["tensioner.F.mean", "chain.Ftight.mean", "chain.Fslack.mean",
+                                      "tensionGuide.phi.peakToPeak_deg", "tensioner.F.order2", "tensioner.F.order4",
+                                      "tensioner.F.order6", "tensioner.F.order8"])}
+    rows = [r for r in realtime.accuracy_lines(summary, summary) if r.startswith("| tensioner")]
+    assert len(rows) == 5 and all("| yes | yes" in r for r in rows)
+    shifted = {k: dict(v, mean=v["mean"] * (1.05 if k == "tensioner.F.mean" else 1.0)) for k, v in summary.items()}
+    row = next(r for r in realtime.accuracy_lines(summary, shifted) if r.startswith("| tensioner.F.mean"))
+    assert "+5.00 %" in row and "| NO |" in row
+
+
+def test_bad_reference_is_named(tmp_path, capsys):
+    with pytest.raises(SystemExit):
+        parse(["--reference", "fast=x.json"])
+    assert "--reference 'fast=x.json'" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        parse(["--reference", f"3000={tmp_path / 'missing.json'}"])
+    assert "missing.json" in capsys.readouterr().err
+    good = tmp_path / "summary.json"
+    good.write_text(json.dumps({"tensioner.F.mean": {"mean": 1.0, "ci95": 0.1, "cycles": 2, "unit": "N"}}))
+    assert parse(["--reference", f"3000={good}"]).references[3000.0]["tensioner.F.mean"]["mean"] == 1.0
+
+
+def test_short_run_reports_the_real_time_factor(tmp_path, capsys):
+    out = tmp_path / "rt.md"
+    assert cli.main(["bench-realtime", "--rpm", "6000", "--cycles", "2", "--out", str(out)]) == 0
+    report = out.read_text()
+    assert "## 6000 rpm: fixed-verlet at 2.5 us" in report
+    assert "RTF (CPU s inside fmi2DoStep per simulated s)" in report and "p99 / median" in report
