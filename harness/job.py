@@ -214,8 +214,12 @@ class SceneRun:
     run_in: int             # engine cycles discarded before the counted ones
     duration: float         # [s] simulated
     cpu: float              # [s] CPU time of the whole loop (FMU and master)
-    step_cpu: float | None  # [s] CPU time inside fmi2DoStep (closed loop only)
-    step_cpus: list | None = None  # [s] the same per fmi2DoStep
+    step_cpus: list | None  # [s] CPU time inside each fmi2DoStep (closed loop only)
+
+    @property
+    def step_cpu(self):
+        """[s] CPU time inside fmi2DoStep over the run (None in open loop)."""
+        return None if self.step_cpus is None else math.fsum(self.step_cpus)
 
     def cost(self, args):
         """What ran and its cost (run.json): CPU seconds per simulated second of the loop and of
@@ -245,8 +249,7 @@ def simulate(args):
     cpu0 = time.process_time()
     loop = run_closed if args.coupling == "closed" else run_open
     d, step_cpus = loop(args, duration, torque, speed)
-    step_cpu = None if step_cpus is None else math.fsum(step_cpus)
-    return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpu, step_cpus)
+    return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpus)
 
 
 def cycle_statistics(args, scene_run):

@@ -180,12 +180,10 @@ PlacedFace placeFace(const GuideFace& f, Vec2 pivot, double c, double s) {
   p.c = c;
   p.s = s;
   if (f.type == GuideFace::Type::Line) {
-    p.from = pivot + rotate(f.from - pivot, c, s);
-    p.to = pivot + rotate(f.to - pivot, c, s);
+    p.corner0 = pivot + rotate(f.from - pivot, c, s);
+    p.corner1 = pivot + rotate(f.to - pivot, c, s);
     p.normal = rotate(f.lineNormal, c, s);
     p.dir = rotate((1.0 / f.lineLength) * (f.to - f.from), c, s);
-    p.corner0 = p.from;
-    p.corner1 = p.to;
   } else {
     p.center = pivot + rotate(f.arc.center - pivot, c, s);
     p.corner0 = p.center + f.arc.radius * rotate(f.arc.dir0, c, s);
@@ -228,11 +226,11 @@ FaceHit plateEdgeFaceContact(const PlacedFace& pf, Vec2 e0, Vec2 e1, Vec2 nOut) 
       return hit;
     }
     case GuideFace::Type::Line: {
-      const Vec2 a = pf.from, n = pf.normal;
+      const Vec2 a = pf.corner0, n = pf.normal;
       const double d0 = dot(e0 - a, n), d1 = dot(e1 - a, n);
       const Vec2 q = d0 <= d1 ? e0 : e1;
       const double along = dot(q - a, pf.dir);
-      if (along < 0.0 || along > f.lineLength) return nearerCorner(a, pf.to, e0, e1, nOut);
+      if (along < 0.0 || along > f.lineLength) return nearerCorner(a, pf.corner1, e0, e1, nOut);
       hit.valid = true;
       hit.gap = std::min(d0, d1);
       hit.point = q;
@@ -256,8 +254,8 @@ bool faceNear(const PlacedFace& pf, Vec2 p, double reach) {
   if (norm2(p - pf.corner0) <= reach2 || norm2(p - pf.corner1) <= reach2) return true;
   const GuideFace& f = *pf.face;
   if (f.type == GuideFace::Type::Line) {
-    const double along = dot(p - pf.from, pf.dir);
-    return along >= -2.0 * reach && along <= f.lineLength + 2.0 * reach && std::fabs(dot(p - pf.from, pf.normal)) <= 2.0 * reach;
+    const double along = dot(p - pf.corner0, pf.dir);
+    return along >= -2.0 * reach && along <= f.lineLength + 2.0 * reach && std::fabs(dot(p - pf.corner0, pf.normal)) <= 2.0 * reach;
   }
   return std::fabs(norm(p - pf.center) - f.arc.radius) <= 2.0 * reach;
 }

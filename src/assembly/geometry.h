@@ -71,8 +71,8 @@ struct PlacedFace {
   const GuideFace* face = nullptr;
   double c = 1.0, s = 0.0;
   Vec2 center;                    // arcs
-  Vec2 corner0, corner1;          // end points
-  Vec2 from, to, normal, dir;     // lines: end points (= corners), normal to the chain side, unit direction
+  Vec2 corner0, corner1;          // end points (lines: from, to)
+  Vec2 normal, dir;               // lines: normal to the chain side, unit direction
 };
 PlacedFace placeFace(const GuideFace& face, Vec2 pivot, double c, double s);
 

@@ -166,7 +166,7 @@ void detectContacts(const Model& m, Data& d, double margin) {
     const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
     const Vec2 bc = g.pivot + rotate(g.boundCenter - g.pivot, cosA, sinA);
     const double reach = g.boundRadius + 2.0 * reachLink;
-    const std::size_t nFaces = std::min(g.faces.size(), d.placedFaces.size());
+    const std::size_t nFaces = g.faces.size();  // d.placedFaces holds the most faces of any guide
     for (std::size_t f = 0; f < nFaces; ++f) d.placedFaces[f] = placeFace(g.faces[f], g.pivot, cosA, sinA);
     for (int i = 0; i < n; ++i) {
       const LinkKin& lk = d.links[i];
