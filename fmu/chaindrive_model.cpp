@@ -144,6 +144,9 @@ void ChainDriveModel::checkChoices(std::vector<std::string>& problems) const {
   if (span && (params_.contactMethod == "event-driven" || params_.contactMethod == "time-stepping"))
     problems.push_back("contact.method: '" + params_.contactMethod +
                        "' does not apply to fidelity 'span'; allowed with it: compliant (or empty: the drive's)");
+  if (span && params_.method == "fixed-newmark")
+    problems.push_back("solver.method: 'fixed-newmark' does not apply to fidelity 'span' (its implicit part is the "
+                       "links' joints and contacts); allowed with it: the other methods");
   if (span && params_.jointModel == "ideal")
     problems.push_back("chain.jointModel: 'ideal' does not apply to fidelity 'span'; allowed with it: journal-bearing "
                        "(or empty: the drive's)");
@@ -155,6 +158,8 @@ void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
     problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
   if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
     problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed [1e-9, 1e-3] s");
+  if (!(params_.newmarkGamma >= 0.5 && params_.newmarkGamma <= 1.0))
+    problems.push_back("solver.newmarkGamma: " + std::to_string(params_.newmarkGamma) + " is out of range; allowed [0.5, 1]");
   auto checkOverride = [&](double v, const char* name, double hi) {
     if (!std::isfinite(v) || v > hi)
       problems.push_back(std::string(name) + ": " + std::to_string(v) + " is out of range; allowed a negative value (as in "
@@ -234,6 +239,7 @@ void ChainDriveModel::startSimulation() {
   opt.integrator.method = params_.method;
   opt.integrator.adaptive.rtol = params_.tolerance;
   opt.integrator.fixed.step = params_.step;
+  opt.integrator.newmark.gamma = params_.newmarkGamma;
   opt.integrator.adaptive.stopAtOutputs = true;
   opt.contactMethod = params_.contactMethod;
   opt.jointModel = params_.jointModel;
@@ -278,6 +284,7 @@ double* ChainDriveModel::realSetting(unsigned vr) {
     case kCamshaftExhaustTau: return &in_.tauExhaust;
     case kSolverTolerance: return &params_.tolerance;
     case kSolverStep: return &params_.step;
+    case kSolverNewmarkGamma: return &params_.newmarkGamma;
     case kTensionerPreload: return &params_.tensionerPreload;
     case kTensionerStiffness: return &params_.tensionerStiffness;
     case kTensionerDamping: return &params_.tensionerDamping;

@@ -87,6 +87,7 @@ class ChainDriveModel {
     std::string fidelity = "link";  // "link" or "span" (SimulationOptions::fidelity)
     double tolerance = 1e-5;
     double step = 2.5e-6;
+    double newmarkGamma = 0.5;
     bool preload = true;
     double tensionerPreload = -1.0, tensionerStiffness = -1.0, tensionerDamping = -1.0,
            tensionerDampingExtension = -1.0;

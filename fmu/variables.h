@@ -51,6 +51,7 @@ enum Vr : unsigned {
   kContactMethod = 106,
   kChainJointModel = 107,
   kFidelity = 108,
+  kSolverNewmarkGamma = 109,
   kTensionerPreload = 110,
   kTensionerStiffness = 111,
   kTensionerDamping = 112,
@@ -113,6 +114,7 @@ constexpr Variable kVariables[] = {
   {"contact.method",             kContactMethod,            Type::String,  Causality::Parameter, ""},
   {"chain.jointModel",           kChainJointModel,          Type::String,  Causality::Parameter, ""},
   {"fidelity",                   kFidelity,                 Type::String,  Causality::Parameter, "link"},
+  {"solver.newmarkGamma",        kSolverNewmarkGamma,       Type::Real,    Causality::Parameter, "0.5"},
 };
 // clang-format on
 

@@ -85,7 +85,7 @@ class Progress:
 
 def parameters_of(args):
     p = {"fidelity": args.fidelity, "solver.method": args.method, "solver.step": args.solver_step,
-         "solver.tolerance": args.rtol}
+         "solver.tolerance": args.rtol, "solver.newmarkGamma": args.newmark_gamma}
     if args.drive:
         p["driveFile"] = str(pathlib.Path(args.drive).resolve())
     return p
@@ -170,6 +170,7 @@ def add_arguments(ap):
     ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: "
                     + ", ".join(f"{f} {h:g}" for f, h in SOLVER_STEP.items()) + ")")
     ap.add_argument("--rtol", type=float, default=1e-5, help="FMU parameter solver.tolerance")
+    ap.add_argument("--newmark-gamma", type=float, default=0.5, help="FMU parameter solver.newmarkGamma (fixed-newmark)")
     ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
 
 

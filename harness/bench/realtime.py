@@ -40,6 +40,7 @@ def add_arguments(ap):
     ap.add_argument("--cycles", type=int, default=24, help="engine cycles counted after the run-in")
     ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")
     ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: the job's)")
+    ap.add_argument("--newmark-gamma", type=float, default=0.5, help="FMU parameter solver.newmarkGamma (fixed-newmark)")
     ap.add_argument("--reference", action="append", default=[], metavar="RPM=SUMMARY",
                     help="summary.json of a reference run at that speed (repeatable)")
     ap.add_argument("--out", default=str(paths.RESULTS / "benchmark_realtime.md"))
@@ -66,7 +67,8 @@ def scene_args(args, rpm):
     """The main job's options at one speed."""
     ap = argparse.ArgumentParser(prog="python -m harness run")
     job.add_arguments(ap)
-    argv = ["--rpm", repr(rpm), "--cycles", str(args.cycles), "--method", args.method]
+    argv = ["--rpm", repr(rpm), "--cycles", str(args.cycles), "--method", args.method,
+            "--newmark-gamma", repr(args.newmark_gamma)]
     argv += ["--solver-step", repr(args.solver_step)] if args.solver_step else []
     return job.check(ap, ap.parse_args(argv))
 

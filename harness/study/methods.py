@@ -48,6 +48,10 @@ METHODS = [
     dict(id="ed-ideal", label="event-driven, ideal joints", contact="event-driven", joints="ideal",
          integrator="arkode-erk", option="rtol", full=[1e-4, 1e-6], quick=[1e-5], default=1e-5,
          stability=[1e-3, 1e-5, 1e-7]),
+    # the joints and contacts implicit (link fidelity): stable far beyond Verlet's step
+    dict(id="newmark", label="compliant / fixed-newmark", contact="compliant", integrator="fixed-newmark",
+         option="step", full=[1.5e-5, 1e-5, 5e-6, 2.5e-6], quick=[1e-5], default=5e-6,
+         stability=[5e-6, 1e-5, 1.5e-5, 2e-5, 3e-5], fixed=True),
 ]
 REFERENCE = dict(id="reference", label="reference: compliant / arkode-erk", contact="compliant",
                  integrator="arkode-erk", option="rtol")

@@ -8,7 +8,7 @@ from . import ladder
 from .errors import joint_limit
 from .methods import KIND_CODES, METHODS, THRESHOLD_RMS, VERDICT_KEYS, is_rigid, setting_label
 
-MARKERS = dict(zip([m["id"] for m in METHODS], "osD^v<>Xp"))
+MARKERS = dict(zip([m["id"] for m in METHODS], "osD^v<>XpP"))
 COLORS = dict(zip([m["id"] for m in METHODS], plt.rcParams["axes.prop_cycle"].by_key()["color"] + ["k"]))
 RIGID = {m["id"] for m in METHODS if is_rigid(m)}
 SPAN_LABEL = "span model against the link model (closed loop, FMU)"

@@ -53,6 +53,8 @@ void usage() {
       "                          method (default 1e-5)\n"
       "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6);\n"
       "                          they step on the grid t0 + k S\n"
+      "  --newmark-gamma G       fixed-newmark: 0.5 keeps every mode's amplitude, up to 1 damps the\n"
+      "                          modes the step cannot resolve (default 0.5)\n"
       "  --max-step S            largest step of adaptive integrators [s] (default unlimited)\n"
       "  --min-step S            adaptive integrators: a smaller step is a step-size collapse [s] (1e-10)\n"
       "  --output-step S         output interval [s] (default 1e-4), rounded to whole grid steps (the\n"
@@ -137,6 +139,7 @@ const Option kOptions[] = {
   {"--max-event-rate",    [](Arguments& a, RunArguments& r) { r.opt.integrator.eventDriven.maxEventsPerSecond = a.number(); }},
   {"--rtol",              [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.rtol = a.number(); }},
   {"--step",              [](Arguments& a, RunArguments& r) { r.opt.integrator.fixed.step = a.number(); }},
+  {"--newmark-gamma",     [](Arguments& a, RunArguments& r) { r.opt.integrator.newmark.gamma = a.number(); }},
   {"--max-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.maxStep = a.number(); }},
   {"--min-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.minStep = a.number(); }},
   {"--output-step",       [](Arguments& a, RunArguments& r) { r.outputStep = a.number(); }},

@@ -6,7 +6,7 @@
 namespace chaindrive {
 
 std::vector<std::string> integratorNames() {
-  return {"cvode-bdf-klu", "cvode-bdf-band", "arkode-erk", "arkode-erk-fixed", "fixed-verlet"};
+  return {"cvode-bdf-klu", "cvode-bdf-band", "arkode-erk", "arkode-erk-fixed", "fixed-verlet", "fixed-newmark"};
 }
 
 std::unique_ptr<Integrator> makeIntegrator(OdeSystem& sys, const IntegratorSettings& s) {
@@ -15,6 +15,7 @@ std::unique_ptr<Integrator> makeIntegrator(OdeSystem& sys, const IntegratorSetti
   if (s.method == "arkode-erk") return makeArkodeErk(sys, s.adaptive, s.erk, nullptr);
   if (s.method == "arkode-erk-fixed") return makeArkodeErk(sys, s.adaptive, s.erk, &s.fixed);
   if (s.method == "fixed-verlet") return makeFixedVerlet(sys, s.fixed);
+  if (s.method == "fixed-newmark") return makeFixedNewmark(sys, s.fixed, s.newmark);
   std::string known;
   for (const auto& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("integrator '" + s.method + "' is unknown; known: " + known);

@@ -14,5 +14,7 @@ std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const AdaptiveOptions& 
 std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const AdaptiveOptions& adaptive, const ErkOptions& erk,
                                           const FixedStepOptions* fixed);
 std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const FixedStepOptions& fixed);
+std::unique_ptr<Integrator> makeFixedNewmark(OdeSystem& sys, const FixedStepOptions& fixed,
+                                             const NewmarkOptions& newmark);
 
 }  // namespace chaindrive

@@ -25,6 +25,12 @@ class OdeSystem {
   virtual const int64_t* jacobianColumnPointers() const { return nullptr; }
   virtual const int64_t* jacobianRowIndices() const { return nullptr; }
   virtual int jacobian(double /*t*/, const double* /*y*/, double* /*values*/) noexcept { return -1; }
+  /// For linearly implicit schemes: replaces r (state-sized; its velocity components are read
+  /// and written) by (I - a dA/dv - b dA/dx)^-1 r, where A are the accelerations and the
+  /// derivatives are those of the system's stiff part at its last rhs evaluation (identity
+  /// outside that part). Returns as rhs does.
+  virtual bool hasStiffSolve() const { return false; }
+  virtual int solveStiff(double /*a*/, double /*b*/, double* /*r*/) noexcept { return -1; }
   /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations.
   virtual int halfBandwidth() const { return size(); }
   /// Typical magnitude of the error that matters, per component: atol_i = rtol * scale_i.
@@ -50,9 +56,14 @@ struct AdaptiveOptions {
   bool stopAtOutputs = false;         // never step past an output time (co-simulation)
 };
 
-/// The fixed-step methods (fixed-verlet, arkode-erk-fixed; time stepping too).
+/// The fixed-step methods (fixed-verlet, fixed-newmark, arkode-erk-fixed; time stepping too).
 struct FixedStepOptions {
   double step = 2e-6;                 // the step, exactly [s]
+};
+
+/// fixed-newmark: gamma = 1/2 keeps every mode's amplitude, more damps the unresolved ones.
+struct NewmarkOptions {
+  double gamma = 0.5;
 };
 
 /// arkode-erk and arkode-erk-fixed.
@@ -86,6 +97,7 @@ struct IntegratorSettings {
   std::string method = "arkode-erk";  // see integratorNames()
   AdaptiveOptions adaptive;
   FixedStepOptions fixed;
+  NewmarkOptions newmark;
   ErkOptions erk;
   BdfOptions bdf;
   RigidContactOptions rigid;

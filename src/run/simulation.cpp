@@ -5,13 +5,20 @@
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/health.h"
+#include "dynamics/iteration_matrix.h"
 #include "dynamics/joint_forces.h"
 #include "span/span_outputs.h"
 
 namespace chaindrive {
 
 DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, const HealthLimits& health)
-    : model_(std::move(m)), in_(in), data_(*model_), jac_(*model_), health_(health) {
+    : model_(std::move(m)),
+      in_(in),
+      data_(*model_),
+      jac_(*model_),
+      iteration_(model_->chain.links),
+      linkRhs_(3 * model_->chain.links),
+      health_(health) {
   const Model& md = *model_;
   velocityOf_.assign(md.nStates, -1);
   isVelocity_.assign(md.nStates, 0);
@@ -54,6 +61,20 @@ int DriveSystem::jacobian(double t, const double* y, double* values) noexcept {
   } catch (...) {
     return -1;
   }
+}
+
+int DriveSystem::solveStiff(double a, double b, double* r) noexcept {
+  const Model& m = *model_;
+  linkIterationMatrix(m, data_, a, b, iteration_);
+  if (!iteration_.factor()) {
+    lastError_ = {FailureKind::NewtonFailure, "the links' iteration matrix is singular"};
+    return 1;
+  }
+  const double mass[3] = {m.chain.mass, m.chain.mass, m.chain.inertia};
+  for (int i = 0; i < 3 * m.chain.links; ++i) linkRhs_[i] = mass[i % 3] * r[6 * (i / 3) + 3 + i % 3];
+  iteration_.solve(linkRhs_.data());
+  for (int i = 0; i < 3 * m.chain.links; ++i) r[6 * (i / 3) + 3 + i % 3] = linkRhs_[i];
+  return 0;
 }
 
 void DriveSystem::toleranceScales(double* scale) const {

@@ -8,6 +8,7 @@
 
 #include "dynamics/data.h"
 #include "integrators/ode_system.h"
+#include "linear/cyclic_block_tridiagonal.h"
 #include "dynamics/jacobian.h"
 #include "assembly/model.h"
 #include "run/outputs.h"
@@ -42,6 +43,8 @@ class DriveSystem : public OdeSystem {
   const int64_t* jacobianColumnPointers() const override { return jac_.columnPointers().data(); }
   const int64_t* jacobianRowIndices() const override { return jac_.rowIndices().data(); }
   int jacobian(double t, const double* y, double* values) noexcept override;
+  bool hasStiffSolve() const override { return true; }
+  int solveStiff(double a, double b, double* r) noexcept override;  // joints and contacts on the links
   int halfBandwidth() const override { return 11; }
   void toleranceScales(double* scale) const override;
   int velocityOf(int i) const override { return velocityOf_[i]; }
@@ -55,6 +58,8 @@ class DriveSystem : public OdeSystem {
   const InputSignal& in_;
   Data data_;
   JacobianAssembler jac_;
+  CyclicBlockTridiagonal3 iteration_;      // linearly implicit schemes: the links' W
+  std::vector<double> linkRhs_;            // (3 links) M r, then the solution
   std::vector<int> velocityOf_;
   std::vector<char> isVelocity_;
   HealthLimits health_;

@@ -12,6 +12,8 @@
 #include "run/inputs.h"
 #include "assembly/model.h"
 #include "run/simulation.h"
+#include "dynamics/dynamics.h"
+#include "assembly/preload.h"
 
 namespace chaindrive::test {
 
@@ -59,6 +61,23 @@ inline std::unique_ptr<InputSignal> constantLoads(const Model& m, double rpm, do
   in->setLoad(m.rotorIndex("camshaftIntake"), tauIntake);
   in->setLoad(m.rotorIndex("camshaftExhaust"), tauExhaust);
   return in;
+}
+
+// A running state: the nominal pose at 3000 rpm, advanced by a short explicit integration so
+// that contacts are closed and joints stretched.
+inline std::vector<double> runningState(const Model& m, const InputSignal& in) {
+  std::vector<double> y = nominalState(m, 314.159);
+  Data d(m);
+  std::vector<double> f(m.nStates);
+  const double h = 2e-7;
+  for (int k = 0; k < 2000; ++k) {  // 0.4 ms, symplectic Euler with small steps
+    forwardCompliant(m, d, in, k * h, y.data(), f.data());
+    for (int i = 0; i < m.nStates; ++i)
+      if (m.nStates && (i < 6 * m.chain.links ? (i % 6 >= 3) : true)) y[i] += h * f[i];
+    for (int i = 0; i < 6 * m.chain.links; ++i)
+      if (i % 6 < 3) y[i] += h * y[i + 3];
+  }
+  return y;
 }
 
 /// Series of one output sampled at every output step.

@@ -18,14 +18,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kExtremeReals[] = {kNaN, kInf, -kInf, 1e300, -1e300, DBL_MAX, -DBL_MAX, 4.9e-324, -0.0, 0.0, -1.0, 1e6};
 
 // value references that name no variable (gaps between the blocks, beyond the end, the extremes)
-constexpr unsigned kInvalidValueReferences[] = {0u, 4u, 9u, 35u, 42u, 99u, 109u, 114u, 1000u, 0xFFFFFFFFu};
+constexpr unsigned kInvalidValueReferences[] = {0u, 4u, 9u, 35u, 42u, 99u, 114u, 120u, 1000u, 0xFFFFFFFFu};
 
 const std::string kLongString(3000, 'x');
 // a string that crashes a logger which uses it as a printf format
 constexpr const char* kFormatString = "%s%n%s%d%%";
 
-const std::vector<std::string> kIntegrators = {"fixed-verlet", "arkode-erk", "arkode-erk-fixed", "cvode-bdf-klu",
-                                               "cvode-bdf-band"};
+const std::vector<std::string> kIntegrators = {"fixed-verlet", "fixed-newmark", "arkode-erk", "arkode-erk-fixed",
+                                               "cvode-bdf-klu", "cvode-bdf-band"};
 const std::vector<std::string> kContactMethods = {"", "compliant", "time-stepping", "event-driven"};
 const std::vector<std::string> kJointModels = {"", "journal-bearing", "ideal"};
 const std::vector<std::string> kFidelities = {"link", "span"};
@@ -88,6 +88,7 @@ double goodReal(Rng& rng, unsigned vr) {
     // short fixed steps keep a communication step cheap; 0.1..1 ms are accepted but unstable:
     // the run must end in a detected blow-up (fmi2Discard), never in garbage
     case kSolverStep: return rng.chance(0.85) ? rng.uniform(1e-6, 3e-6) : rng.logUniform(1e-4, 1e-3);
+    case kSolverNewmarkGamma: return rng.uniform(0.5, 1.0);
     case kTensionerPreload: return rng.chance(0.3) ? -1.0 : rng.uniform(0.0, 300.0);
     case kTensionerStiffness: return rng.chance(0.3) ? -1.0 : rng.logUniform(1e3, 1e6);
     case kTensionerDamping:
@@ -100,6 +101,7 @@ double badReal(Rng& rng, unsigned vr) {
   switch (vr) {
     case kSolverStep: return rng.pick({0.0, -1.0, 1e-12, 0.5, 1e300, kNaN, kInf});
     case kSolverTolerance: return rng.pick({0.0, 0.5, -1e-5, 1e-13, kNaN, -kInf});
+    case kSolverNewmarkGamma: return rng.pick({0.0, 0.4999, 1.0001, -0.5, kNaN, kInf});
     case kTensionerPreload: return rng.pick({1e6, 1e300, kNaN, kInf});
     case kTensionerStiffness: return rng.pick({1e10, 1e300, kNaN, -kInf});
     case kTensionerDamping:
@@ -191,6 +193,7 @@ struct MethodCombination {
 constexpr MethodCombination kMethodCombinations[] = {
     {"arkode-erk", "compliant", "journal-bearing", 2},    {"arkode-erk-fixed", "", "", 2},
     {"cvode-bdf-klu", "", "", 2},                         {"cvode-bdf-band", "", "", 2},
+    {"fixed-newmark", "", "", 2},
     {"fixed-verlet", "time-stepping", "", 2},             {"fixed-verlet", "time-stepping", "ideal", 2},
     {"arkode-erk", "event-driven", "journal-bearing", 2}, {"arkode-erk", "event-driven", "ideal", 1},
 };

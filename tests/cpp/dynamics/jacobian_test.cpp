@@ -9,29 +9,10 @@
 #include "dynamics/jacobian.h"
 #include "assembly/model.h"
 #include "assembly/preload.h"
+#include "test_util.h"
 
 using namespace chaindrive;
-
-namespace {
-
-// A running state: the nominal pose at 3000 rpm, advanced by a short explicit integration so
-// that contacts are closed and joints stretched.
-std::vector<double> runningState(const Model& m, const InputSignal& in) {
-  std::vector<double> y = nominalState(m, 314.159);
-  Data d(m);
-  std::vector<double> f(m.nStates);
-  const double h = 2e-7;
-  for (int k = 0; k < 2000; ++k) {  // 0.4 ms, symplectic Euler with small steps
-    forwardCompliant(m, d, in, k * h, y.data(), f.data());
-    for (int i = 0; i < m.nStates; ++i)
-      if (m.nStates && (i < 6 * m.chain.links ? (i % 6 >= 3) : true)) y[i] += h * f[i];
-    for (int i = 0; i < 6 * m.chain.links; ++i)
-      if (i % 6 < 3) y[i] += h * y[i + 3];
-  }
-  return y;
-}
-
-}  // namespace
+using chaindrive::test::runningState;
 
 TEST(Jacobian, MatchesCentralDifferencesOfTheRightHandSide) {
   const Model m = assemble(defaultDriveDescription());

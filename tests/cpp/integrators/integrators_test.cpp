@@ -149,14 +149,16 @@ TEST(Integrators, MethodsAgreeOnAShortRun) {
 }
 
 // The fixed-step scheme is for real-time use: a communication step (restart from the state,
-// integrate, outputs) allocates nothing once the simulation has run one step, in both fidelities.
+// integrate, outputs) allocates nothing once the simulation has run one step, in both fidelities
+// and with either fixed-step scheme.
 TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
   if (!chaindrive::test::allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc";
   auto m = defaultModel();
-  for (const char* fidelity : {"link", "span"}) {
+  for (const auto& [fidelity, method] : {std::pair<const char*, const char*>{"link", "fixed-verlet"},
+                                         {"span", "fixed-verlet"}, {"link", "fixed-newmark"}}) {
     SimulationOptions opt;
     opt.fidelity = fidelity;
-    opt.integrator.method = "fixed-verlet";
+    opt.integrator.method = method;
     opt.integrator.fixed.step = 2.5e-6;
     Simulation sim(m, opt, constantLoads(*m, 3000.0));
     sim.start(0.0);
@@ -172,7 +174,7 @@ TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
         (void)sim.outputs().tensionerForce;
       }
     });
-    EXPECT_EQ(n, 0) << fidelity;
+    EXPECT_EQ(n, 0) << fidelity << " " << method;
   }
   // the counter works: a vector allocated in a counted region is counted
   EXPECT_GE(chaindrive::test::countAllocations([] { std::vector<double> v(10); v[0] = 1.0; }), 1);

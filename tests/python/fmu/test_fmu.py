@@ -245,6 +245,30 @@ def test_bad_parameter_is_an_error():
     s.slave.freeInstance()
 
 
+@pytest.mark.parametrize("parameters, names", [
+    ({"solver.method": "fixed-newmark", "solver.newmarkGamma": 0.3}, ("solver.newmarkGamma", "[0.5, 1]")),
+    ({"solver.method": "fixed-newmark", "fidelity": "span"}, ("solver.method", "fixed-newmark", "span")),
+])
+def test_newmark_parameters_out_of_their_domain_are_errors(parameters, names):
+    s = fmu.Slave("newmark", parameters=parameters)
+    with pytest.raises(FMICallException):
+        s.initialize(inputs=INPUTS)
+    assert any(all(n in m for n in names) for m in s.errors()), s.errors()
+    s.slave.freeInstance()
+
+
+def test_fixed_newmark_runs_where_verlet_blows_up():
+    # the joints and contacts implicit: 20 us, where fixed-verlet is a blow-up (the test below)
+    s = fmu.Slave("newmark20", parameters={"solver.method": "fixed-newmark", "solver.step": 2e-5,
+                                           "solver.newmarkGamma": 0.6})
+    s.initialize(inputs=INPUTS)
+    for _ in range(50):
+        s.step(H)
+    v = s.get(["tensioner.F", "solver.steps"])
+    assert 0.0 < v["tensioner.F"] < 1e3 and v["solver.steps"] == round(50 * H / 2e-5), v
+    s.slave.freeInstance()
+
+
 def test_numerical_failure_is_a_discard_and_the_state_can_be_restored():
     # an explicit step far beyond the stability limit blows up within the first step
     s = fmu.Slave("discard", parameters={"solver.step": 2e-5})

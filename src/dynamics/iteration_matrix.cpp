@@ -1,0 +1,89 @@
+#include "dynamics/iteration_matrix.h"
+
+#include <cmath>
+
+namespace chaindrive {
+
+namespace {
+
+using Block = CyclicBlockTridiagonal3::Block;
+using PointJacobian = Eigen::Matrix<double, 2, 3>;
+
+// d(point)/d(x, y, gamma) of a point at r from a link's centre: [I, perp(r)]
+PointJacobian pointJacobian(Vec2 r) {
+  PointJacobian j;
+  j << 1.0, 0.0, -r.y, 0.0, 1.0, r.x;
+  return j;
+}
+
+Eigen::Matrix2d outer(Vec2 u, double s) {
+  Eigen::Matrix2d o;
+  o << s * u.x * u.x, s * u.x * u.y, s * u.x * u.y, s * u.y * u.y;
+  return o;
+}
+
+// a * (damping) + b * (stiffness) of the joint between pins, as a 2 x 2 matrix on their
+// separation: isotropic without clearance, along the pins' normal when the bearing is closed
+Eigen::Matrix2d jointPinMatrix(const ChainModel& ch, const LinkKin& la, const LinkKin& lb, Vec2 force, double a,
+                               double b) {
+  const double s = a * ch.jointDamping + b * ch.jointStiffness;
+  if (ch.jointClearance <= 0.0) return s * Eigen::Matrix2d::Identity();
+  const Vec2 dpos = la.front - lb.rear;
+  const double dist = norm(dpos);
+  if (dist <= ch.jointClearance || norm2(force) == 0.0) return Eigen::Matrix2d::Zero();
+  return outer((1.0 / dist) * dpos, s);
+}
+
+void addJoints(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w) {
+  const int n = m.chain.links;
+  for (int j = 0; j < n; ++j) {
+    const int k = j + 1 == n ? 0 : j + 1;
+    const LinkKin &la = d.links[j], &lb = d.links[k];
+    const Vec2 force = d.joints[j].force;  // on link j's front pin; link k gets the opposite
+    const Vec2 u = la.front - la.c, v = lb.rear - lb.c;
+    const PointJacobian ja = pointJacobian(u), jb = pointJacobian(v);
+    const Eigen::Matrix2d s = jointPinMatrix(m.chain, la, lb, force, a, b);
+    const Eigen::Matrix<double, 3, 2> jas = ja.transpose() * s, jbs = jb.transpose() * s;
+    w.diagonal(j).noalias() += jas * ja;
+    w.diagonal(k).noalias() += jbs * jb;
+    w.upper(j).noalias() -= jas * jb;
+    w.lower(k).noalias() -= jbs * ja;
+    // the lever arms turn with their links under the joint force
+    w.diagonal(j)(2, 2) += b * dot(u, force);
+    w.diagonal(k)(2, 2) -= b * dot(v, force);
+  }
+}
+
+void addContacts(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w) {
+  const double vReg2 = m.frictionRegularization * m.frictionRegularization;
+  for (int i = 0; i < d.nContacts; ++i) {
+    const ContactPoint& c = d.contacts[i];
+    if (c.gap >= 0.0 || c.fN <= 0.0) continue;
+    const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
+    const double delta = -c.gap, deltaRate = -c.vN;
+    const double spring = law.exponent == 1.0 ? law.stiffness * delta : law.stiffness * std::pow(delta, law.exponent);
+    const double springRate = law.exponent * spring / delta;  // d(spring)/d(delta)
+    // normal force's derivatives by penetration and its rate, friction's by sliding speed
+    const double kN = law.huntCrossley ? springRate * (1.0 + 1.5 * law.dampingFactor * deltaRate) : springRate;
+    const double cN = law.huntCrossley ? 1.5 * law.dampingFactor * spring : law.damping;
+    const double slide2 = c.vT * c.vT + vReg2;
+    const double cT = law.friction * c.fN * vReg2 / (slide2 * std::sqrt(slide2));
+    const Eigen::Matrix2d s = outer(c.normal, a * cN + b * kN) + outer(c.tangent, a * cT);
+    const PointJacobian jc = pointJacobian(c.rLink);
+    Block& diag = w.diagonal(c.link);
+    diag.noalias() += jc.transpose() * s * jc;
+    diag(2, 2) += b * dot(c.rLink, c.fN * c.normal + c.fT * c.tangent);
+  }
+}
+
+}  // namespace
+
+void linkIterationMatrix(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w) {
+  w.setZero();
+  const Block mass = Eigen::Vector3d(m.chain.mass, m.chain.mass, m.chain.inertia).asDiagonal();
+  for (int i = 0; i < m.chain.links; ++i) w.diagonal(i) = mass;
+  if (d.jointForces) addJoints(m, d, a, b, w);
+  if (d.compliantContacts) addContacts(m, d, a, b, w);
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,21 @@
+// The links' iteration matrix of linearly implicit schemes: W = M - a dQ/dv - b dQ/dq over the
+// link coordinates (x, y, gamma of every link), from the joints and the compliant contacts at
+// the last evaluation of the dynamics. These are the stiff forces (joint modes near 3e5 rad/s,
+// roller contacts in parallel, friction regularised over 0.05 m/s); what they exert on rotors and
+// guides (large inertias, slow modes) is left to the explicit part of the scheme, so W is a ring
+// of 3 x 3 blocks: link j couples to links j - 1 and j + 1 through its joints only.
+#pragma once
+
+#include "assembly/model.h"
+#include "dynamics/data.h"
+#include "linear/cyclic_block_tridiagonal.h"
+
+namespace chaindrive {
+
+/// Fills W (blocks of links 0..n-1) with M - a D - b K at the kinematics, joint forces and
+/// contacts held in d (an evaluation of the dynamics, generalizedForces, must precede it).
+/// Derivatives at fixed lever arms and contact normals, plus the lever arms' turning under
+/// the force (the geometric stiffness of joints and contacts).
+void linkIterationMatrix(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w);
+
+}  // namespace chaindrive
