@@ -28,7 +28,7 @@ Two couplings:
 
     python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in S]
                           [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
-                          [--solver-step S] [--drive FILE] [--out results]
+                          [--solver-step S] [--newmark-gamma G] [--drive FILE] [--out results]
 
 Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
 cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.

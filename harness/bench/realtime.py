@@ -3,7 +3,7 @@ simulated second (the real-time factor a hardware-in-the-loop rig sees), its spr
 communication steps, and the accuracy of the same runs against a reference, at each speed.
 
     python -m harness bench-realtime [--rpm 3000 6000] [--cycles 24] [--method fixed-verlet]
-                                     [--solver-step S] [--reference RPM=SUMMARY.json ...]
+                                     [--solver-step S] [--newmark-gamma G] [--reference RPM=SUMMARY.json ...]
                                      [--out results/benchmark_realtime.md]
 
 Each speed runs the main job (harness/job.py: ChainDrive.fmu in closed loop with the measured-torque

@@ -27,8 +27,9 @@ class CyclicBlockTridiagonal3 {
   Block& lower(int i) { return lower_[i]; }
   void setZero();
 
-  /// Factors the matrix in place of the blocks. False when a pivot block is singular (to the
-  /// relative tolerance of Eigen's 3 x 3 inverse); the factors are then unusable.
+  /// Factors the matrix; the lower blocks are overwritten (fill all blocks again before the next
+  /// factor()). False when a pivot block is singular or its inverse not finite; the factors are
+  /// then unusable.
   bool factor();
   /// Solves A x = b for the factored matrix; x overwrites b (3 n values, block row by row).
   void solve(double* b) const;
