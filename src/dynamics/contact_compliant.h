@@ -16,6 +16,14 @@ struct CompliantResult {
 /// Sets c.fN and c.fT from the contact kinematics.
 CompliantResult compliantContactForce(const ContactLaw& law, double vReg, ContactPoint& c);
 
+/// The law's slopes at contact c's state (after compliantContactForce): the normal force's by
+/// penetration [N/m] and by its rate [N s/m], the friction force's by sliding speed [N s/m]
+/// (zero for an open contact or a normal force clamped at zero).
+struct CompliantSlopes {
+  double byPenetration = 0.0, byPenetrationRate = 0.0, bySliding = 0.0;
+};
+CompliantSlopes compliantContactSlopes(const ContactLaw& law, double vReg, const ContactPoint& c);
+
 /// Adds the generalized forces of contact c (forces c.fN, c.fT) to the link and rotor entries.
 void addContactGen(const Model& m, const ContactPoint& c, double* gen);
 

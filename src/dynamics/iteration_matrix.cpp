@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "dynamics/contact_compliant.h"
+
 namespace chaindrive {
 
 namespace {
@@ -55,20 +57,13 @@ void addJoints(const Model& m, const Data& d, double a, double b, CyclicBlockTri
 }
 
 void addContacts(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w) {
-  const double vReg2 = m.frictionRegularization * m.frictionRegularization;
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& c = d.contacts[i];
-    if (c.gap >= 0.0 || c.fN <= 0.0) continue;
     const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
-    const double delta = -c.gap, deltaRate = -c.vN;
-    const double spring = law.exponent == 1.0 ? law.stiffness * delta : law.stiffness * std::pow(delta, law.exponent);
-    const double springRate = law.exponent * spring / delta;  // d(spring)/d(delta)
-    // normal force's derivatives by penetration and its rate, friction's by sliding speed
-    const double kN = law.huntCrossley ? springRate * (1.0 + 1.5 * law.dampingFactor * deltaRate) : springRate;
-    const double cN = law.huntCrossley ? 1.5 * law.dampingFactor * spring : law.damping;
-    const double slide2 = c.vT * c.vT + vReg2;
-    const double cT = law.friction * c.fN * vReg2 / (slide2 * std::sqrt(slide2));
-    const Eigen::Matrix2d s = outer(c.normal, a * cN + b * kN) + outer(c.tangent, a * cT);
+    const CompliantSlopes k = compliantContactSlopes(law, m.frictionRegularization, c);
+    if (c.gap >= 0.0 || c.fN <= 0.0) continue;  // open, or the normal force clamped at zero
+    const Eigen::Matrix2d s =
+        outer(c.normal, a * k.byPenetrationRate + b * k.byPenetration) + outer(c.tangent, a * k.bySliding);
     const PointJacobian jc = pointJacobian(c.rLink);
     Block& diag = w.diagonal(c.link);
     diag.noalias() += jc.transpose() * s * jc;
