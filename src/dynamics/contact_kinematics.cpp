@@ -7,10 +7,13 @@
 
 namespace chaindrive {
 
-LinkKin linkKinematics(const ChainModel& ch, const double* s) {
+namespace {
+
+// The link's pose and velocities from its state and its axis e = (cos, sin) of its angle.
+LinkKin linkKinematics(const ChainModel& ch, const double* s, Vec2 e) {
   LinkKin k;
   k.c = Vec2{s[0], s[1]};
-  sinCos(s[2], k.e.y, k.e.x);
+  k.e = e;
   k.v = Vec2{s[3], s[4]};
   k.w = s[5];
   const Vec2 half = (0.5 * ch.pitch) * k.e;
@@ -22,9 +25,28 @@ LinkKin linkKinematics(const ChainModel& ch, const double* s) {
   return k;
 }
 
+}  // namespace
+
+LinkKin linkKinematics(const ChainModel& ch, const double* s) {
+  Vec2 e;
+  sinCos(s[2], e.y, e.x);
+  return linkKinematics(ch, s, e);
+}
+
 void evaluateKinematics(const Model& m, Data& d, const double* y) {
   const int n = m.chain.links;
-  for (int i = 0; i < n; ++i) d.links[i] = linkKinematics(m.chain, y + 6 * i);
+  // the link axes first, two at a time in a loop of their own (sinCos2: the same bits as one at
+  // a time), then the rest of every link's kinematics
+  int i = 0;
+  for (; i + 2 <= n; i += 2) {
+    const double angle[2] = {y[6 * i + 2], y[6 * i + 8]};
+    double sine[2], cosine[2];
+    sinCos2(angle, sine, cosine);
+    d.links[i].e = Vec2{cosine[0], sine[0]};
+    d.links[i + 1].e = Vec2{cosine[1], sine[1]};
+  }
+  if (i < n) sinCos(y[6 * i + 2], d.links[i].e.y, d.links[i].e.x);
+  for (i = 0; i < n; ++i) d.links[i] = linkKinematics(m.chain, y + 6 * i, d.links[i].e);
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
     const double a = y[ro.stateAngle];

@@ -35,15 +35,16 @@ class FixedNewmark : public FixedStepScheme {
   void step(double h, double tNext) override {
     double* y = y_.data();
     double* a = fNew_.data();
+    const double* f = f_.data();
     const double h2 = h * h;
-    for (const auto& p : positions_) y[p.first] += h * y[p.second] + (0.5 - beta_) * h2 * f_[p.second];
-    for (int i : velocities_) y[i] += (1.0 - gamma_) * h * f_[i];
-    for (int i : others_) y[i] += h * f_[i];
+    positions_.forEach([&](int i, int v) { y[i] += h * y[v] + (0.5 - beta_) * h2 * f[v]; });
+    velocities_.forEach([&](int i, int) { y[i] += (1.0 - gamma_) * h * f[i]; });
+    others_.forEach([&](int i, int) { y[i] += h * f[i]; });
     check(tNext, sys_.rhs(tNext, y, a), "right-hand side failed: ");
     check(tNext, sys_.solveStiff(gamma_ * h, beta_ * h2, a), "stiff solve failed: ");
-    for (const auto& p : positions_) y[p.first] += beta_ * h2 * a[p.second];
-    for (int i : velocities_) y[i] += gamma_ * h * a[i];
-    for (int i : others_) y[i] += 0.5 * h * (a[i] - f_[i]);
+    positions_.forEach([&](int i, int v) { y[i] += beta_ * h2 * a[v]; });
+    velocities_.forEach([&](int i, int) { y[i] += gamma_ * h * a[i]; });
+    others_.forEach([&](int i, int) { y[i] += 0.5 * h * (a[i] - f[i]); });
     ++stats_.jacobianEvaluations;
     finishStep(h, tNext);
   }

@@ -15,22 +15,79 @@
 
 namespace chaindrive {
 
+/// A set of state components, each with a partner (component i + offset; offset 0 when there is
+/// none), stored as runs of `width` consecutive components repeated `count` times at a stride, so
+/// that the schemes' loops need no index arrays (a multibody state repeats the same few components
+/// per body). forEach visits the components in increasing order, as a plain index list would.
+class ComponentSet {
+ public:
+  /// From (component, partner offset) pairs in increasing order of component.
+  explicit ComponentSet(const std::vector<std::pair<int, int>>& items) {
+    std::vector<Block> runs;  // maximal runs of consecutive components with one offset
+    for (const auto& [i, offset] : items) {
+      if (!runs.empty() && i == runs.back().first + runs.back().width && offset == runs.back().partnerOffset)
+        ++runs.back().width;
+      else
+        runs.push_back(Block{i, 1, 1, 0, offset});
+    }
+    for (const Block& r : runs) {  // equal runs at a constant stride make one block
+      if (!blocks_.empty()) {
+        Block& b = blocks_.back();
+        const int stride = r.first - b.first;
+        if (r.width == b.width && r.partnerOffset == b.partnerOffset && (b.count == 1 || stride == b.count * b.stride)) {
+          if (b.count == 1) b.stride = stride;
+          ++b.count;
+          continue;
+        }
+      }
+      blocks_.push_back(r);
+    }
+  }
+
+  /// Calls f(i, partner of i) for every component.
+  template <class F>
+  void forEach(F f) const {
+    for (const Block& b : blocks_) {
+      const int offset = b.partnerOffset;
+      if (b.width == 3) {  // planar bodies (x, y, angle): unrolled
+        for (int k = 0, i = b.first; k < b.count; ++k, i += b.stride) {
+          f(i, i + offset);
+          f(i + 1, i + 1 + offset);
+          f(i + 2, i + 2 + offset);
+        }
+      } else {
+        for (int k = 0, i = b.first; k < b.count; ++k, i += b.stride)
+          for (int c = 0; c < b.width; ++c) f(i + c, i + c + offset);
+      }
+    }
+  }
+
+ private:
+  struct Block {
+    int first, width, count, stride, partnerOffset;
+  };
+  std::vector<Block> blocks_;
+};
+
+/// The components of a system in the schemes' three roles.
+struct ComponentRoles {
+  explicit ComponentRoles(const OdeSystem& sys);
+  std::vector<std::pair<int, int>> positions, velocities, others;  // (component, partner offset)
+};
+
+inline ComponentRoles::ComponentRoles(const OdeSystem& sys) {
+  for (int i = 0; i < sys.size(); ++i) {
+    const int v = sys.velocityOf(i);
+    if (v >= 0) positions.push_back({i, v - i});
+    else if (sys.isVelocity(i)) velocities.push_back({i, 0});
+    else others.push_back({i, 0});
+  }
+}
+
 class FixedStepScheme : public Integrator {
  public:
-  FixedStepScheme(OdeSystem& sys, const FixedStepOptions& s, const std::string& name) : sys_(sys) {
-    if (!(s.step > 0.0)) throw std::invalid_argument(name + " needs a positive fixed step");
-    const int n = sys.size();
-    y_.assign(n, 0.0);
-    f_.assign(n, 0.0);
-    fNew_.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
-      const int v = sys.velocityOf(i);
-      if (v >= 0) positions_.push_back({i, v});
-      else if (sys.isVelocity(i)) velocities_.push_back(i);
-      else others_.push_back(i);
-    }
-    grid_.unit = s.step;
-  }
+  FixedStepScheme(OdeSystem& sys, const FixedStepOptions& s, const std::string& name)
+      : FixedStepScheme(sys, s, name, ComponentRoles(sys)) {}
 
   void reset(double t0, const double* y0) override {
     std::memcpy(y_.data(), y0, sizeof(double) * y_.size());
@@ -52,6 +109,15 @@ class FixedStepScheme : public Integrator {
   IntegratorStats stats() const override { return stats_; }
 
  protected:
+  FixedStepScheme(OdeSystem& sys, const FixedStepOptions& s, const std::string& name, const ComponentRoles& roles)
+      : sys_(sys), positions_(roles.positions), velocities_(roles.velocities), others_(roles.others) {
+    if (!(s.step > 0.0)) throw std::invalid_argument(name + " needs a positive fixed step");
+    const int n = sys.size();
+    y_.assign(n, 0.0);
+    f_.assign(n, 0.0);
+    fNew_.assign(n, 0.0);
+    grid_.unit = s.step;
+  }
   /// One step of length h to the grid time tNext: y_ and f_ (its derivative) advanced.
   virtual void step(double h, double tNext) = 0;
 
@@ -70,8 +136,8 @@ class FixedStepScheme : public Integrator {
 
   OdeSystem& sys_;
   std::vector<double> y_, f_, fNew_;  // f_: derivative of y_; fNew_: the step's new one
-  std::vector<std::pair<int, int>> positions_;
-  std::vector<int> velocities_, others_;
+  ComponentSet positions_;            // partner: the component holding the velocity
+  ComponentSet velocities_, others_;
   TimeGrid grid_;     // t0 (the last reset) + k h
   long long k_ = 0;   // grid index of the state y_
   IntegratorStats stats_;

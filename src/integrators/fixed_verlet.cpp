@@ -23,13 +23,15 @@ class FixedVerlet : public FixedStepScheme {
   void step(double h, double tNext) override {
     double* y = y_.data();
     const double hh = 0.5 * h;
-    for (int i : velocities_) y[i] += hh * f_[i];             // kick
-    for (const auto& p : positions_) y[p.first] += h * y[p.second];  // drift
+    const double* f = f_.data();
+    const double* fNew = fNew_.data();
+    velocities_.forEach([&](int i, int) { y[i] += hh * f[i]; });     // kick
+    positions_.forEach([&](int i, int v) { y[i] += h * y[v]; });     // drift
     // prescribed angles and accumulators: predictor with the old derivative, corrected below
-    for (int i : others_) y[i] += h * f_[i];
+    others_.forEach([&](int i, int) { y[i] += h * f[i]; });
     check(tNext, sys_.rhs(tNext, y, fNew_.data()), "right-hand side failed: ");
-    for (int i : velocities_) y[i] += hh * fNew_[i];          // kick
-    for (int i : others_) y[i] += hh * (fNew_[i] - f_[i]);    // trapezoidal
+    velocities_.forEach([&](int i, int) { y[i] += hh * fNew[i]; });  // kick
+    others_.forEach([&](int i, int) { y[i] += hh * (fNew[i] - f[i]); });  // trapezoidal
     finishStep(h, tNext);
   }
 };

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <vector>
 
 namespace chaindrive {
 namespace {
@@ -47,6 +49,31 @@ TEST(SinCos, QuadrantsAndSpecialValues) {
   EXPECT_TRUE(std::isnan(s) && std::isnan(c));
   sinCos(1e9, s, c);  // beyond the reduction's range: libm
   EXPECT_EQ(s, std::sin(1e9));
+}
+
+// The paired version must give the scalar one's bits in both lanes, in every quadrant, for
+// angles of either sign, at the quadrant boundaries, and for the lanes that fall back to libm
+// (large angles, NaN, infinities) next to a lane that does not.
+TEST(SinCos, PairsGiveTheBitsOfSingleAngles) {
+  std::mt19937_64 rng(11);
+  std::vector<double> angles = {0.0, -0.0, 0.25 * kPi, -0.25 * kPi, 0.5 * kPi, kPi, -kPi, 1.5 * kPi, 1048575.9,
+                                -1048575.9, 1048576.0, 1e9, -1e300, std::nan(""), INFINITY, -INFINITY};
+  for (double range : {1.0, 10.0, 1e3, 1e6}) {
+    std::uniform_real_distribution<double> angle(-range, range);
+    for (int i = 0; i < 50000; ++i) angles.push_back(angle(rng));
+  }
+  const auto sameBits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (std::size_t i = 0; i + 1 < angles.size(); ++i) {
+    const double pair[2] = {angles[i], angles[i + 1]};
+    double sine[2], cosine[2];
+    sinCos2(pair, sine, cosine);
+    for (int lane = 0; lane < 2; ++lane) {
+      double s = 0.0, c = 0.0;
+      sinCos(pair[lane], s, c);
+      ASSERT_TRUE(sameBits(sine[lane], s)) << "sin of " << pair[lane] << ": " << sine[lane] << " vs " << s;
+      ASSERT_TRUE(sameBits(cosine[lane], c)) << "cos of " << pair[lane] << ": " << cosine[lane] << " vs " << c;
+    }
+  }
 }
 
 }  // namespace
