@@ -86,12 +86,13 @@ int gapOf(const SprocketModel& s, Vec2 body, int guess) {
 
 }  // namespace
 
-bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double /*angle*/,
-                              double cosA, double sinA, double rate, double margin, ContactPoint& cp, int* gapHint) {
+namespace {
+
+// The roller at p (rel = p - the sprocket's centre, within its reach) of link `link` at `end`
+// against sprocket `sprocket`: the contact search's inner query, inlined there.
+inline bool rollerContact(const Model& m, int sprocket, int link, int end, const LinkKin& lk, Vec2 p, Vec2 rel,
+                          double cosA, double sinA, double rate, double margin, ContactPoint& cp, int* gapHint) {
   const SprocketModel& s = m.sprockets[sprocket];
-  const Vec2 p = end == 0 ? lk.rear : lk.front;
-  const Vec2 rel = p - s.center;
-  if (norm2(rel) > s.reach2) return false;
   // roller centre in the sprocket frame, then in the frame of its tooth gap
   const Vec2 body = rotate(rel, cosA, -sinA);
   const int k = gapOf(s, body, gapHint ? *gapHint : -1);
@@ -122,6 +123,17 @@ bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, c
   cp.vT = dot(vRel, cp.tangent);
   cp.fN = cp.fT = 0.0;
   return true;
+}
+
+}  // namespace
+
+bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double /*angle*/,
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp, int* gapHint) {
+  const SprocketModel& s = m.sprockets[sprocket];
+  const Vec2 p = end == 0 ? lk.rear : lk.front;
+  const Vec2 rel = p - s.center;
+  if (norm2(rel) > s.reach2) return false;
+  return rollerContact(m, sprocket, link, end, lk, p, rel, cosA, sinA, rate, margin, cp, gapHint);
 }
 
 bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
@@ -171,10 +183,11 @@ void detectContacts(const Model& m, Data& d, double margin) {
       const Vec2 roller = end == 0 ? lk.rear : lk.front;
       for (std::size_t s = 0; s < nSprockets; ++s) {
         const SprocketModel& sp = m.sprockets[s];
-        if (norm2(roller - sp.center) > sp.reach2 || count >= cap) continue;
+        const Vec2 rel = roller - sp.center;
+        if (norm2(rel) > sp.reach2 || count >= cap) continue;
         const int r = sp.rotor;
-        if (rollerSprocketKinematics(m, static_cast<int>(s), i, end, lk, d.rotorAngle[r], d.rotorCos[r], d.rotorSin[r],
-                                     d.rotorRate[r], margin, d.contacts[count], &d.gapHints[(i + end) * nSprockets + s]))
+        if (rollerContact(m, static_cast<int>(s), i, end, lk, roller, rel, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r],
+                          margin, d.contacts[count], &d.gapHints[(i + end) * nSprockets + s]))
           ++count;
       }
     }
