@@ -6,6 +6,8 @@
 #   ./run.sh test   runs all tests (C++ unit and system tests with ctest, Python tests with pytest),
 #                   then the sanitizer stage: the C++ tests and the FMI call-sequence fuzz built
 #                   with AddressSanitizer and UndefinedBehaviorSanitizer (any report fails it)
+#   ./run.sh sweep  speed sweeps and run-ups on Dask with Campbell diagrams (options of
+#                   python -m harness sweep; set-up first, as the other two)
 #
 # Installing Debian packages needs root (or sudo). Environment: CHAINDRIVE_BUILD (build
 # directory, default ./build), CHAINDRIVE_SANITIZE_BUILD (the sanitizer build, default
@@ -90,6 +92,11 @@ case "${1:-}" in
     setup
     "$VENV/bin/python" -m harness run "$@"
     ;;
+  sweep)
+    shift
+    setup
+    "$VENV/bin/python" -m harness sweep "$@"
+    ;;
   test)
     shift
     setup
@@ -102,7 +109,7 @@ case "${1:-}" in
     fi
     ;;
   *)
-    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test" >&2
+    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test | ./run.sh sweep [options of python -m harness sweep]" >&2
     exit 2
     ;;
 esac

@@ -1,12 +1,14 @@
 """The command line of the harness: one entry, one subcommand per job.
 
     python -m harness run            the main job (harness/job.py)
+    python -m harness sweep          speed sweeps and run-ups on Dask, Campbell diagrams (harness/sweep/sweep.py)
     python -m harness study          work-precision charts and stability map (harness/study/study.py)
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
     python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
     python -m harness bench-realtime the link model's real-time factor through the FMU (harness/bench/realtime.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
+    python -m harness bench-sweep    a sweep on 1 and 2 Dask workers and in a plain loop (harness/bench/sweep.py)
     python -m harness tables         the SYNTHESIZED input tables (harness/tables/make_tables.py)
     python -m harness design-drive   the default drive (harness/drive/design.py)
     python -m harness picture        picture of a drive (harness/plots/drive_picture.py)
@@ -26,6 +28,8 @@ PROG = "python -m harness"
 # name: (module, one line of help)
 COMMANDS = {
     "run": ("harness.job", "the main job: a scene through ChainDrive.fmu with the measured-torque tables"),
+    "sweep": ("harness.sweep.sweep", "speed sweeps and run-ups through ChainDrive.fmu on Dask: Campbell diagrams, "
+              "order cuts, forces over speed"),
     "study": ("harness.study.study", "work-precision charts on cycle statistics and the stability map"),
     "chaos": ("harness.study.chaos.chaos", "divergence rate of twin runs per damping setting"),
     "fidelity": ("harness.study.fidelity", "the span model against the link model within tolerances: "
@@ -34,6 +38,8 @@ COMMANDS = {
     "bench-realtime": ("harness.bench.realtime", "the link model's real-time factor and step-time spread through "
                        "ChainDrive.fmu, its accuracy against a reference"),
     "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),
+    "bench-sweep": ("harness.bench.sweep", "the same sweep on 1 and 2 Dask workers and in a plain loop: speed-up and "
+                    "Dask's overhead per case"),
     "tables": ("harness.tables.make_tables", "generate the SYNTHESIZED camshaft-torque and crankshaft-speed tables"),
     "design-drive": ("harness.drive.design", "design the default drive (src/drives/default_drive.json)"),
     "picture": ("harness.plots.drive_picture", "picture of a drive at its assembled initial pose"),

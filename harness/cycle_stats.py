@@ -88,12 +88,19 @@ def per_cycle(d, run_in_cycles, meshing_order, cycles=None):
     cycles = [slice(i0, i1) for i0, i1, _ in spans]
     out = {key: (unit, np.array([float(f(s)) for s in cycles])) for key, unit, f in level_quantities(d)}
     orders = list(ORDERS) + [meshing_order]
-    phi = d["crankshaft.phi"]
     for name, unit, scale, suffix in ORDER_SIGNALS:
-        amps = scale * np.array([order_amplitudes(phi[i0:i1], d[name][i0:i1], phi0, orders) for i0, i1, phi0 in spans])
+        amps = order_amplitudes_per_cycle(d, spans, name, orders, scale)
         for i, k in enumerate(orders):
-            out[f"{name}.order{k:g}{suffix}"] = (unit, amps[:, i] if len(spans) else np.array([]))
+            out[f"{name}.order{k:g}{suffix}"] = (unit, amps[:, i])
     return out
+
+
+def order_amplitudes_per_cycle(d, spans, name, orders, scale=1.0):
+    """scale times the amplitudes of the engine orders of output `name` in each cycle of spans
+    (cycle_spans): an array (cycles, orders)."""
+    phi = d["crankshaft.phi"]
+    amps = [order_amplitudes(phi[i0:i1], d[name][i0:i1], phi0, orders) for i0, i1, phi0 in spans]
+    return scale * np.array(amps).reshape(len(spans), len(orders))
 
 
 def headline_keys(meshing_order):

@@ -33,6 +33,7 @@ Two couplings:
 Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
 cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.
 """
+import contextlib
 import dataclasses
 import json
 import math
@@ -91,34 +92,57 @@ def parameters_of(args):
     return p
 
 
-def run_closed(args, duration, torque, speed):
-    """Master loop: inputs looked up at the FMU's own angles before every step. Returns (record,
-    CPU seconds spent inside each fmi2DoStep)."""
+def table_inputs(torque, speed):
+    """The closed loop's inputs from the tables of one engine speed: a function of (time, crank
+    angle, intake and exhaust camshaft angles in crank degrees) giving the FMU's inputs."""
+    def inputs(t, crank_deg, intake_deg, exhaust_deg):
+        return {"crankshaft.w": speed_at(speed, crank_deg),
+                "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", intake_deg)),
+                "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", exhaust_deg))}
+    return inputs
+
+
+def run_closed(args, duration, inputs, progress=True):
+    """Master loop: inputs (table_inputs) looked up at the FMU's own angles before every step.
+    Returns (record, CPU seconds spent inside each fmi2DoStep)."""
     s = fmu.Slave("chaindrive", parameters=parameters_of(args))
     n = int(round(duration / args.step))
-    w0 = speed_at(speed, 0.0)
-    s.initialize(inputs={"crankshaft.w": w0,
-                         "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", 0.0)),
-                         "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", 0.0))})
+    u0 = inputs(0.0, 0.0, 0.0, 0.0)
+    with fmu_messages(s):
+        s.initialize(inputs=u0)
     names = s.outputs
-    rows = [[0.0] + [s.get(names)[k] for k in names] + [w0, np.nan, np.nan]]
-    prog = Progress(duration, "closed loop")
+    rows = [[0.0] + [s.get(names)[k] for k in names] + [u0["crankshaft.w"], np.nan, np.nan]]
+    prog = Progress(duration, "closed loop") if progress else None
     for k in range(n):
         o = s.get(["crankshaft.phi", "camshaftIntake.phi", "camshaftExhaust.phi"])
-        crank_deg = math.degrees(o["crankshaft.phi"])
         # camshafts turn at half the crankshaft speed; the tables are over crank angle
-        u = {"crankshaft.w": speed_at(speed, crank_deg),
-             "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", 2.0 * math.degrees(o["camshaftIntake.phi"]))),
-             "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", 2.0 * math.degrees(o["camshaftExhaust.phi"])))}
-        s.step(args.step, inputs=u, t=k * args.step)
+        u = inputs(k * args.step, math.degrees(o["crankshaft.phi"]), 2.0 * math.degrees(o["camshaftIntake.phi"]),
+                   2.0 * math.degrees(o["camshaftExhaust.phi"]))
+        with fmu_messages(s):
+            s.step(args.step, inputs=u, t=k * args.step)
         v = s.get(names)
         rows.append([(k + 1) * args.step] + [v[x] for x in names] + [u["crankshaft.w"], u["camshaftIntake.tau"],
                                                                     u["camshaftExhaust.tau"]])
-        prog.update((k + 1) * args.step)
-    prog.done()
+        if prog:
+            prog.update((k + 1) * args.step)
+    if prog:
+        prog.done()
     s.close()
     cols = ["time"] + names + ["input.crankshaft.w", "input.camshaftIntake.tau", "input.camshaftExhaust.tau"]
     return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
+
+
+@contextlib.contextmanager
+def fmu_messages(slave):
+    """A failing FMI call's exception (the same object) with the errors the FMU logged (the
+    reason: a parameter out of range, a method failure) appended to its message."""
+    try:
+        yield
+    except Exception as e:
+        errors = slave.errors()
+        if errors:
+            e.args = (f"{e} ChainDrive.fmu: {'; '.join(errors)}",)
+        raise
 
 
 def speed_at(speed, crank_deg):
@@ -233,9 +257,9 @@ class SceneRun:
                 "doStepCpuPerSimulatedSecond": per_s}
 
 
-def simulate(args):
+def simulate(args, progress=True):
     """Runs the scene of args (the options of this command, checked) through ChainDrive.fmu over
-    the run-in and the counted cycles; prints what runs."""
+    the run-in and the counted cycles; prints what runs (and a progress bar when progress)."""
     cycle = 2.0 * 60.0 / args.rpm
     run_in = args.run_in if args.run_in is not None else run_in_cycles(args.rpm)
     # a tenth of a cycle and SPEED_MARGIN more, so that the last counted cycle is complete with the
@@ -248,8 +272,10 @@ def simulate(args):
           f"communication step {args.step * 1e6:g} us, {args.method} at {args.solver_step * 1e6:g} us")
     print(f"tables: {torque.path} ({torque.provenance})")
     cpu0 = time.process_time()
-    loop = run_closed if args.coupling == "closed" else run_open
-    d, step_cpus = loop(args, duration, torque, speed)
+    if args.coupling == "closed":
+        d, step_cpus = run_closed(args, duration, table_inputs(torque, speed), progress)
+    else:
+        d, step_cpus = run_open(args, duration, torque, speed)
     return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpus)
 
 

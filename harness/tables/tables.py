@@ -242,6 +242,12 @@ def _for_speed(stem, rpm, data_dir):
     return Table("angle", t1.x, cols, rpm, prov, t1.quantity, header, None)
 
 
+def tabulated_speeds(data_dir=None):
+    """The engine speeds [rpm] with both a camshaft-torque and a crankshaft-speed table."""
+    data_dir = pathlib.Path(data_dir) if data_dir is not None else DATA_DIR
+    return sorted(set(_available(data_dir, "camshaft_torque")) & set(_available(data_dir, "crankshaft_speed")))
+
+
 def camshaft_torque(rpm, data_dir=None):
     """Camshaft load-torque table for an engine speed (exact file or interpolated, see _for_speed)."""
     return _for_speed("camshaft_torque", rpm, data_dir)

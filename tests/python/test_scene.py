@@ -21,7 +21,8 @@ def closed_loop_2000():
     args = argparse.Namespace(drive=None, rpm=RPM, step=1e-4, fidelity="link", method="fixed-verlet",
                               solver_step=2.5e-6, rtol=1e-5, newmark_gamma=0.5, tables=None)
     cycle = 120.0 / RPM
-    d, _ = scene.run_closed(args, 3 * cycle, tables.camshaft_torque(RPM), tables.crankshaft_speed(RPM))
+    d, _ = scene.run_closed(args, 3 * cycle, scene.table_inputs(tables.camshaft_torque(RPM),
+                                                                tables.crankshaft_speed(RPM)))
     return d, d["time"] >= cycle  # the first engine cycle is the start transient
 
 

@@ -1,0 +1,188 @@
+"""The cases of a sweep and their run: a stationary engine speed or a run-up through
+ChainDrive.fmu in closed loop with the measured-torque tables (the main job's own loop and cycle
+statistics, harness/job.py and harness/cycle_stats.py), reduced to what a sweep keeps per engine
+speed: the headline cycle statistics, the minima and maxima of the chain forces and the engine-order
+spectra of the tensioner force and the tension-guide angle (the Campbell diagram's columns).
+
+A case is a plain value (Case): it travels to a Dask worker, which runs it with run_case (the FMU
+is instantiated there) and returns a plain dict. Its cache key (case_key) covers every input that
+changes the result: the case's fields, the contents of the drive file and of the tables, and the
+code version (the FMU binary and the harness's sources)."""
+import argparse
+import contextlib
+import dataclasses
+import hashlib
+import io
+import json
+import math
+import pathlib
+import time
+import traceback
+
+import numpy as np
+
+from .. import cycle_stats, job, paths
+from ..drive.description import drive_json, meshing_order
+from ..fmu import fmu
+from ..tables import tables
+
+SPECTRUM_STEP = 0.5         # engine orders per bin of the spectra (half orders: the camshafts')
+SPECTRUM_BEYOND_MESHING = 4  # the spectra reach this many orders beyond the meshing order
+FORCE_SIGNALS = ("tensioner.F", "chain.Ftight", "chain.Fslack")  # minima and maxima per speed [N]
+SPECTRUM_SIGNALS = (("tensioner.F", "N", 1.0), ("tensionGuide.phi", "deg", 180.0 / math.pi))
+
+
+@dataclasses.dataclass(frozen=True)
+class Case:
+    """One run of a sweep. Stationary: `rpm` held (the tables' fluctuation about it), `cycles`
+    engine cycles counted after the main job's run-in. Run-up (rpm_end given): the run-in at
+    `rpm`, then the mean speed ramped linearly to rpm_end over ramp_s seconds; every engine cycle
+    of the ramp is one point over speed."""
+    rpm: float
+    fidelity: str = "link"
+    method: str = "fixed-verlet"
+    solver_step: float | None = None  # [s]; None: the fidelity's default (harness/job.py)
+    cycles: int = 8
+    drive: str | None = None
+    tables: str | None = None
+    rpm_end: float | None = None
+    ramp_s: float | None = None
+
+    @property
+    def runup(self):
+        return self.rpm_end is not None
+
+    def label(self):
+        speed = f"run-up {self.rpm:g}-{self.rpm_end:g} rpm in {self.ramp_s:g} s" if self.runup else f"{self.rpm:g} rpm"
+        return f"{speed}, {self.fidelity}, {self.method}"
+
+    def args(self):
+        """The main job's options for this case (harness/job.py)."""
+        return argparse.Namespace(drive=self.drive, rpm=self.rpm, fidelity=self.fidelity, cycles=self.cycles,
+                                  run_in=None, coupling="closed", tables=self.tables, step=1e-4, method=self.method,
+                                  solver_step=self.solver_step or job.SOLVER_STEP.get(self.fidelity), rtol=1e-5,
+                                  newmark_gamma=0.5)
+
+
+def _digest_files(paths_, h):
+    for p in paths_:
+        h.update(str(p.name).encode())
+        h.update(p.read_bytes())
+
+
+def code_version():
+    """sha256 of the FMU binary and of the harness's Python sources: results computed by other
+    code are not taken from the cache."""
+    h = hashlib.sha256()
+    _digest_files([fmu.fmu_path()], h)
+    _digest_files(sorted(pathlib.Path(paths.ROOT / "harness").rglob("*.py")), h)
+    return h.hexdigest()
+
+
+def case_key(case, version):
+    """The cache key of a case: its fields, the contents of its drive file and tables, the code."""
+    h = hashlib.sha256(json.dumps(dataclasses.asdict(case), sort_keys=True).encode())
+    h.update(version.encode())
+    if case.drive:
+        _digest_files([pathlib.Path(case.drive)], h)
+    _digest_files(sorted(pathlib.Path(case.tables or tables.DATA_DIR).glob("*.csv")), h)
+    return h.hexdigest()[:32]
+
+
+def spectrum_orders(meshing):
+    """The orders of the spectra: SPECTRUM_STEP to the meshing order + SPECTRUM_BEYOND_MESHING."""
+    n = int(round((meshing + SPECTRUM_BEYOND_MESHING) / SPECTRUM_STEP))
+    return [SPECTRUM_STEP * (i + 1) for i in range(n)]
+
+
+def run_case(case):
+    """Runs a case (in a Dask worker or here) and returns its result as a plain dict: status "ok"
+    with its rows (one per speed: the stationary speed, or every engine cycle of a run-up), or
+    status "failed" with the error; a failing case never raises, so the sweep goes on."""
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):  # the main job's report lines: the sweep reports
+            return _run_runup(case) if case.runup else _run_stationary(case)
+    except Exception as e:  # a method failure, a bad parameter, a table out of range: reported
+        return {"status": "failed", "error": f"{type(e).__name__}: {e}", "trace": traceback.format_exc(limit=4)}
+
+
+def _run_stationary(case):
+    args = case.args()
+    scene_run = job.simulate(args, progress=False)
+    _, summary = job.cycle_statistics(args, scene_run)
+    d = scene_run.record
+    spans = cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[:case.cycles]
+    row = {"rpm": case.rpm, "cycles": len(spans)}
+    row.update({k: s["mean"] for k, s in summary.items()})
+    row.update({k + ".ci95": s["ci95"] for k, s in summary.items()})
+    counted = slice(spans[0][0], spans[-1][1])
+    for name in FORCE_SIGNALS:
+        row[name + ".min"] = float(np.min(d[name][counted]))
+        row[name + ".max"] = float(np.max(d[name][counted]))
+    orders = spectrum_orders(meshing_order(drive_json(case.drive)))
+    spectra = {name: np.mean(cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale), axis=0).tolist()
+               for name, _, scale in SPECTRUM_SIGNALS}
+    return {"status": "ok", "rows": [row], "orders": orders, "spectra": {k: [v] for k, v in spectra.items()},
+            "units": _with_force_units({k: s["unit"] for k, s in summary.items()}), "cpu_s": scene_run.cpu,
+            "simulated_s": scene_run.duration}
+
+
+def _with_force_units(units):
+    """The units of the headline quantities and of the forces' minima and maxima."""
+    return dict(units, **{name + stat: "N" for name in FORCE_SIGNALS for stat in (".min", ".max")})
+
+
+def runup_inputs(case, ramp_start):
+    """The run-up's inputs: the mean speed held at case.rpm up to ramp_start [s], then ramped
+    linearly to case.rpm_end over case.ramp_s; the camshaft torques and the crankshaft speed's
+    fluctuation (relative to its table's speed) interpolated linearly in engine speed between the
+    tables of the two nearest tabulated speeds (the tables' own speed dependence)."""
+    speeds = tables.tabulated_speeds(case.tables)
+    lo, hi = min(case.rpm, case.rpm_end), max(case.rpm, case.rpm_end)
+    if not speeds or lo < speeds[0] or hi > speeds[-1]:
+        raise ValueError(f"run-up {case.rpm:g}-{case.rpm_end:g} rpm: the tables cover "
+                         f"{speeds[0]:g}-{speeds[-1]:g} rpm" if speeds else "no tables")
+    at_speed = {r: job.table_inputs(tables.camshaft_torque(r, case.tables), tables.crankshaft_speed(r, case.tables))
+                for r in speeds}
+
+    def inputs(t, crank_deg, intake_deg, exhaust_deg):
+        ramp = min(max((t - ramp_start) / case.ramp_s, 0.0), 1.0)
+        rpm = case.rpm + (case.rpm_end - case.rpm) * ramp
+        i = min(max(int(np.searchsorted(speeds, rpm)) - 1, 0), len(speeds) - 2)
+        r1, r2 = speeds[i], speeds[i + 1]
+        w = (rpm - r1) / (r2 - r1)
+        at = [at_speed[r](t, crank_deg, intake_deg, exhaust_deg) for r in (r1, r2)]
+        fluctuation = [u["crankshaft.w"] / fmu.rpm_to_rad_s(r) for u, r in zip(at, (r1, r2))]
+        out = {k: (1.0 - w) * at[0][k] + w * at[1][k] for k in at[0]}
+        out["crankshaft.w"] = fmu.rpm_to_rad_s(rpm) * ((1.0 - w) * fluctuation[0] + w * fluctuation[1])
+        return out
+    return inputs
+
+
+def _run_runup(case):
+    if not (case.ramp_s and case.ramp_s > 0.0):
+        raise ValueError(f"run-up: ramp time {case.ramp_s} s must be positive")
+    args = case.args()
+    run_in = job.run_in_cycles(case.rpm)
+    ramp_start = run_in * 120.0 / case.rpm
+    cpu0 = time.process_time()
+    d, _ = job.run_closed(args, ramp_start + case.ramp_s, runup_inputs(case, ramp_start), progress=False)
+    cpu = time.process_time() - cpu0
+    per_cycle = cycle_stats.per_cycle(d, run_in, meshing_order(drive_json(case.drive)))
+    spans = cycle_stats.cycle_spans(d["crankshaft.phi"], run_in)
+    if not spans:
+        raise ValueError(f"run-up: the ramp of {case.ramp_s:g} s holds no whole engine cycle")
+    rows = []
+    for j, (i0, i1, _) in enumerate(spans):
+        row = {"rpm": float(np.mean(d["input.crankshaft.w"][i0:i1])) * 60.0 / (2.0 * math.pi), "cycles": 1}
+        row.update({k: float(v[j]) for k, (_, v) in per_cycle.items()})
+        for name in FORCE_SIGNALS:
+            row[name + ".min"] = float(np.min(d[name][i0:i1]))
+            row[name + ".max"] = float(np.max(d[name][i0:i1]))
+        rows.append(row)
+    orders = spectrum_orders(meshing_order(drive_json(case.drive)))
+    spectra = {name: cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale).tolist()
+               for name, _, scale in SPECTRUM_SIGNALS}
+    return {"status": "ok", "rows": rows, "orders": orders, "spectra": spectra,
+            "units": _with_force_units({k: u for k, (u, _) in per_cycle.items()}), "cpu_s": cpu,
+            "simulated_s": ramp_start + case.ramp_s}
