@@ -136,21 +136,21 @@ def runup_inputs(case, ramp_start):
     """The run-up's inputs: the mean speed held at case.rpm up to ramp_start [s], then ramped
     linearly to case.rpm_end over case.ramp_s; the camshaft torques and the crankshaft speed's
     fluctuation (relative to its table's speed) interpolated linearly in engine speed between the
-    tables of the two nearest tabulated speeds (the tables' own speed dependence)."""
+    tables of the two nearest tabulated speeds (the tables' own speed dependence), and those of
+    the lowest or highest tabulated speed below or above the tables' range."""
     speeds = tables.tabulated_speeds(case.tables)
-    lo, hi = min(case.rpm, case.rpm_end), max(case.rpm, case.rpm_end)
-    if not speeds or lo < speeds[0] or hi > speeds[-1]:
-        raise ValueError(f"run-up {case.rpm:g}-{case.rpm_end:g} rpm: the tables cover "
-                         f"{speeds[0]:g}-{speeds[-1]:g} rpm" if speeds else "no tables")
+    if not speeds:
+        raise ValueError(f"run-up: no camshaft_torque_<n>rpm.csv and crankshaft_speed_<n>rpm.csv tables in "
+                         f"{case.tables or tables.DATA_DIR}")
     at_speed = {r: job.table_inputs(tables.camshaft_torque(r, case.tables), tables.crankshaft_speed(r, case.tables))
                 for r in speeds}
 
     def inputs(t, crank_deg, intake_deg, exhaust_deg):
         ramp = min(max((t - ramp_start) / case.ramp_s, 0.0), 1.0)
         rpm = case.rpm + (case.rpm_end - case.rpm) * ramp
-        i = min(max(int(np.searchsorted(speeds, rpm)) - 1, 0), len(speeds) - 2)
-        r1, r2 = speeds[i], speeds[i + 1]
-        w = (rpm - r1) / (r2 - r1)
+        i = min(max(int(np.searchsorted(speeds, rpm)) - 1, 0), max(len(speeds) - 2, 0))
+        r1, r2 = speeds[i], speeds[min(i + 1, len(speeds) - 1)]
+        w = min(max((rpm - r1) / (r2 - r1), 0.0), 1.0) if r2 > r1 else 0.0  # held beyond the tables
         at = [at_speed[r](t, crank_deg, intake_deg, exhaust_deg) for r in (r1, r2)]
         fluctuation = [u["crankshaft.w"] / fmu.rpm_to_rad_s(r) for u, r in zip(at, (r1, r2))]
         out = {k: (1.0 - w) * at[0][k] + w * at[1][k] for k in at[0]}

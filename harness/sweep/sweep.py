@@ -66,7 +66,8 @@ def speed_range(text):
 def add_arguments(ap):
     ap.add_argument("--rpm", help=f"speed sweep: FROM:TO:STEP or a comma list [rpm] (default {DEFAULT_RPM} "
                     "unless --runup is given)")
-    ap.add_argument("--runup", help="run-up FROM:TO [rpm] (within the tables' 1000-6000 rpm; TO < FROM: a run-down)")
+    ap.add_argument("--runup", help="run-up FROM:TO [rpm] (TO < FROM: a run-down; beyond the tables' speeds, the "
+                    "nearest table's torques and relative speed fluctuation)")
     ap.add_argument("--ramp-time", type=float, default=5.0, help="run-up: duration of the ramp [s] (default 5)")
     ap.add_argument("--fidelity", choices=job.FIDELITIES, default="link")
     ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")

@@ -115,3 +115,30 @@ def test_the_command_writes_the_dataset_and_the_plots_and_a_run_up(tmp_path):
 def test_bad_options_are_named(argv, message):
     p = subprocess.run([sys.executable, "-m", "harness.sweep"] + argv, capture_output=True, text=True, timeout=60)
     assert p.returncode == 2 and message in p.stderr, p.stderr
+
+
+def test_run_up_inputs_follow_the_tables_speed_dependence_and_hold_beyond_them():
+    import math
+    from harness import job
+    from harness.sweep.cases import runup_inputs
+    from harness.tables import tables
+    case = Case(rpm=800.0, rpm_end=6500.0, ramp_s=1.0)
+    inputs = runup_inputs(case, ramp_start=0.2)
+    at = {r: job.table_inputs(tables.camshaft_torque(r), tables.crankshaft_speed(r)) for r in (1000.0, 2000.0, 3000.0, 6000.0)}
+    angles = (0.0, 123.0, 400.0)
+
+    def rad_s(rpm):
+        return rpm * 2.0 * math.pi / 60.0
+    for crank in angles:
+        held = inputs(0.1, crank, crank, crank)           # run-in at 800 rpm: the 1000 rpm table's shape
+        ref = at[1000.0](0.1, crank, crank, crank)
+        assert held["camshaftIntake.tau"] == ref["camshaftIntake.tau"]
+        assert held["crankshaft.w"] == pytest.approx(ref["crankshaft.w"] * 800.0 / 1000.0, rel=1e-12)
+        mid = inputs(0.2 + 1700.0 / 5700.0, crank, crank, crank)  # 2500 rpm: halfway between two tables
+        lo, hi = at[2000.0](0.0, crank, crank, crank), at[3000.0](0.0, crank, crank, crank)
+        assert mid["camshaftExhaust.tau"] == pytest.approx(0.5 * (lo["camshaftExhaust.tau"] + hi["camshaftExhaust.tau"]))
+        assert mid["crankshaft.w"] == pytest.approx(rad_s(2500.0) * 0.5 * (lo["crankshaft.w"] / rad_s(2000.0)
+                                                                          + hi["crankshaft.w"] / rad_s(3000.0)))
+        top = inputs(5.0, crank, crank, crank)             # after the ramp: 6500 rpm, the 6000 rpm table's shape
+        assert top["camshaftIntake.tau"] == at[6000.0](0.0, crank, crank, crank)["camshaftIntake.tau"]
+        assert top["crankshaft.w"] == pytest.approx(at[6000.0](0.0, crank, crank, crank)["crankshaft.w"] * 6500.0 / 6000.0)
