@@ -38,7 +38,8 @@ class ChainDriveModel {
     std::vector<double> y;
   };
   /// The first bytes of a serialized state of this model.
-  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '2'};
+  // '3': the link states laid out component by component (src/assembly/model.h)
+  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '3'};
   /// Bytes of the fixed fields of a serialized Snapshot (without y).
   static constexpr std::size_t kSnapshotFieldBytes = 6 * sizeof(double) + 2 * sizeof(long long);
 

@@ -11,6 +11,8 @@
 
 #include <cmath>
 
+#include "simd.h"
+
 namespace chaindrive {
 
 namespace sincos_detail {
@@ -24,7 +26,7 @@ constexpr double kReducible = 1048576.0;               // 2^20
 /// sin and cos of x - kd pi/2 (|x - kd pi/2| <= pi/4): one definition for a double and for a
 /// pair of doubles (the same operations in the same order, so the same bits in every lane).
 template <class T>
-inline void kernel(T x, T kd, T& s, T& c) {
+CHAINDRIVE_ALWAYS_INLINE void kernel(T x, T kd, T& s, T& c) {
   const T r = ((x - kd * kPio2A) - kd * kPio2B) - kd * kPio2C;
   const T z = r * r;
   s = r + r * z *
@@ -62,40 +64,45 @@ inline void sinCos(double x, double& sine, double& cosine) {
   }
 }
 
-/// sinCos of two angles at once, bit for bit the same values: both lanes in one pair of SSE2
-/// registers (GCC's and Clang's vector extensions), the quadrant chosen by bit masks instead of
-/// a branch per angle (the link angles around the chain fall in every quadrant).
-inline void sinCos2(const double x[2], double sine[2], double cosine[2]) {
+/// sinCos of a vector of W angles (simd.h), bit for bit the values of sinCos one at a time: the
+/// quadrant chosen by bit masks instead of a branch per angle (the link angles around the chain
+/// fall in every quadrant); lanes beyond the reducible range (and NaN) fall back to libm.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void sinCosLanes(typename simd::Lanes<W>::V x, typename simd::Lanes<W>::V& sine,
+                                          typename simd::Lanes<W>::V& cosine) {
   using namespace sincos_detail;
-  typedef double Pair __attribute__((vector_size(16)));
-  typedef long long Mask __attribute__((vector_size(16)));
-  typedef int Int2 __attribute__((vector_size(8)));
-  // a where the mask is set, b elsewhere; b with its sign flipped where the mask is set
-  const auto select = [](Mask m, Pair a, Pair b) { return (Pair)(((Mask)a & m) | ((Mask)b & ~m)); };
-  const auto flipSign = [](Mask m, Pair a) { return (Pair)((Mask)a ^ (m & (Mask)Pair{-0.0, -0.0})); };
-  const Pair in = {x[0], x[1]};
-  const Pair magnitude = {std::fabs(x[0]), std::fabs(x[1])};
-  const Mask reducible = magnitude < kReducible;  // false for NaN too
-  const Pair xr = (Pair)((Mask)in & reducible);   // 0 where not: nothing out of int range converted
-  const Pair half = select(xr >= 0.0, Pair{0.5, 0.5}, Pair{-0.5, -0.5});
-  const Int2 k = __builtin_convertvector(xr * kTwoOverPi + half, Int2);  // truncation, |k| < 2^20
-  Pair s, c;
-  kernel(xr, __builtin_convertvector(k, Pair), s, c);
+  using V = typename simd::Lanes<W>::V;
+  using Mask = typename simd::Lanes<W>::Mask;
+  using simd::flipSign;
+  using simd::select;
+  const V magnitude = (V)((Mask)x & ~(Mask)simd::splat<V>(-0.0));  // |x|: the sign bit cleared
+  const Mask reducible = magnitude < kReducible;                    // false for NaN too
+  const V xr = (V)((Mask)x & reducible);          // 0 where not: nothing out of int range converted
+  const V half = select(xr >= 0.0, simd::splat<V>(0.5), simd::splat<V>(-0.5));
+  const auto k = __builtin_convertvector(xr * kTwoOverPi + half, typename simd::Lanes<W>::Int);  // |k| < 2^20
+  V s, c;
+  kernel(xr, __builtin_convertvector(k, V), s, c);
   // the quadrant as a double: SSE2 compares doubles into 64-bit masks, but not 64-bit integers
-  const Pair quadrant = __builtin_convertvector(k & 3, Pair);
+  const V quadrant = __builtin_convertvector(k & 3, V);
   const Mask swap = (quadrant == 1.0) | (quadrant == 3.0), negateSine = quadrant >= 2.0,
              negateCosine = (quadrant == 1.0) | (quadrant == 2.0);
-  const Pair sineOut = flipSign(negateSine, select(swap, c, s));
-  const Pair cosineOut = flipSign(negateCosine, select(swap, s, c));
-  for (int lane = 0; lane < 2; ++lane) {
-    if (reducible[lane]) {
-      sine[lane] = sineOut[lane];
-      cosine[lane] = cosineOut[lane];
-    } else {
-      sine[lane] = std::sin(x[lane]);
-      cosine[lane] = std::cos(x[lane]);
+  sine = flipSign(negateSine, select(swap, c, s));
+  cosine = flipSign(negateCosine, select(swap, s, c));
+  if (simd::allSet(reducible)) return;
+  for (int l = 0; l < W; ++l)
+    if (!reducible[l]) {
+      sine[l] = std::sin(x[l]);
+      cosine[l] = std::cos(x[l]);
     }
-  }
+}
+
+/// sinCos of two angles at once (one pair of SSE2 registers), the same bits.
+inline void sinCos2(const double x[2], double sine[2], double cosine[2]) {
+  using V = simd::Lanes<2>::V;
+  V s, c;
+  sinCosLanes<2>(simd::load<V>(x), s, c);
+  simd::store(sine, s);
+  simd::store(cosine, c);
 }
 
 }  // namespace chaindrive

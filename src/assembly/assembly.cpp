@@ -538,8 +538,8 @@ void placeSpanProbe(const Model& m, const std::vector<std::string>& route, const
   }
 }
 
-// The state vector: 6 per link, each rotor's angle (and rate unless prescribed), then the two
-// energy accumulators.
+// The state vector (model.h): the 6 link components over all links, each rotor's angle (and rate
+// unless prescribed), then the two energy accumulators.
 void layOutState(Model& m) {
   int idx = 6 * m.chain.links;
   for (auto& r : m.rotors) {

@@ -92,26 +92,11 @@ ToothGap ToothGap::build(int teeth, double pitch, double rollerDiameter, double 
   return g;
 }
 
-ProfileHit ToothGap::closest(Vec2 p) const {
+ProfileHit ToothGap::closestOffSeat(Vec2 p) const {
   const double sy = p.y < 0.0 ? -1.0 : 1.0;
   const Vec2 q{p.x, sy * p.y};
   double best = 1e300;
   Vec2 bestPoint;
-  // A point inside the seat circle and within the seat's angle range is closest to the seat:
-  // the flanks and the tip lie outside that circle (the flank circle touches it externally).
-  {
-    const Vec2 d = q - seat.center;
-    const double r2 = norm2(d);
-    if (r2 < seatRadius * seatRadius && r2 > 0.0 && seat.contains(d)) {
-      const double r = std::sqrt(r2);
-      ProfileHit h;
-      h.distance = seatRadius - r;
-      const Vec2 u = (1.0 / r) * d;
-      h.point = seat.center + seatRadius * Vec2{u.x, sy * u.y};
-      h.normal = Vec2{-u.x, -sy * u.y};
-      return h;
-    }
-  }
   const Vec2 seatBottom = seat.center + Vec2{-seatRadius, 0.0};
   closestOnArc(seat, q, junctionSeatFlank, seatBottom, best, bestPoint);
   closestOnArc(flank, q, junctionSeatFlank, junctionFlankTip, best, bestPoint);
@@ -147,33 +132,6 @@ std::vector<Vec2> ToothGap::outline(int m) const {
   return out;
 }
 
-namespace {
-
-// Contact of a face end (a corner at point c) with the plate edge segment e0-e1 whose outward
-// normal (towards the guide) is nOut. Valid when the corner projects onto the segment.
-FaceHit cornerContact(Vec2 c, Vec2 e0, Vec2 e1, Vec2 nOut) {
-  FaceHit hit;
-  const Vec2 seg = e1 - e0;
-  const double l2 = norm2(seg);
-  if (l2 <= 0.0) return hit;
-  const double t = dot(c - e0, seg) / l2;
-  if (t < 0.0 || t > 1.0) return hit;
-  hit.valid = true;
-  hit.point = e0 + t * seg;
-  hit.gap = dot(c - hit.point, nOut);
-  hit.normal = -1.0 * nOut;
-  return hit;
-}
-
-FaceHit nearerCorner(Vec2 c0, Vec2 c1, Vec2 e0, Vec2 e1, Vec2 nOut) {
-  const FaceHit h0 = cornerContact(c0, e0, e1, nOut), h1 = cornerContact(c1, e0, e1, nOut);
-  if (!h0.valid) return h1;
-  if (!h1.valid) return h0;
-  return h0.gap <= h1.gap ? h0 : h1;
-}
-
-}  // namespace
-
 PlacedFace placeFace(const GuideFace& f, Vec2 pivot, double c, double s) {
   PlacedFace p;
   p.face = &f;
@@ -190,74 +148,6 @@ PlacedFace placeFace(const GuideFace& f, Vec2 pivot, double c, double s) {
     p.corner1 = p.center + f.arc.radius * rotate(f.arc.dir1, c, s);
   }
   return p;
-}
-
-FaceHit plateEdgeFaceContact(const PlacedFace& pf, Vec2 e0, Vec2 e1, Vec2 nOut) {
-  // Inside a face's extent the gap is measured to the face; beyond it, to the face's end
-  // corners, so that the gap and the force stay continuous where a link leaves the guide.
-  const GuideFace& f = *pf.face;
-  FaceHit hit;
-  switch (f.type) {
-    case GuideFace::Type::ConvexArc:
-    case GuideFace::Type::ConcaveArc: {
-      const Vec2 center = pf.center;
-      Vec2 q;
-      if (f.type == GuideFace::Type::ConvexArc) {
-        const Vec2 seg = e1 - e0;
-        const double l2 = norm2(seg);
-        const double t = std::clamp(l2 > 0.0 ? dot(center - e0, seg) / l2 : 0.0, 0.0, 1.0);
-        q = e0 + t * seg;
-      } else {
-        q = norm(e0 - center) >= norm(e1 - center) ? e0 : e1;
-      }
-      const Vec2 d = q - center;
-      const double r = norm(d);
-      if (r <= 0.0) return hit;
-      if (!f.arc.contains(rotate(d, pf.c, -pf.s))) return nearerCorner(pf.corner0, pf.corner1, e0, e1, nOut);
-      hit.valid = true;
-      hit.point = q;
-      if (f.type == GuideFace::Type::ConvexArc) {
-        hit.gap = r - f.arc.radius;
-        hit.normal = (1.0 / r) * d;
-      } else {
-        hit.gap = f.arc.radius - r;
-        hit.normal = (-1.0 / r) * d;
-      }
-      return hit;
-    }
-    case GuideFace::Type::Line: {
-      const Vec2 a = pf.corner0, n = pf.normal;
-      const double d0 = dot(e0 - a, n), d1 = dot(e1 - a, n);
-      const Vec2 q = d0 <= d1 ? e0 : e1;
-      const double along = dot(q - a, pf.dir);
-      if (along < 0.0 || along > f.lineLength) return nearerCorner(a, pf.corner1, e0, e1, nOut);
-      hit.valid = true;
-      hit.gap = std::min(d0, d1);
-      hit.point = q;
-      hit.normal = n;
-      return hit;
-    }
-  }
-  return hit;
-}
-
-Vec2 faceOutwardNear(const PlacedFace& pf, Vec2 p) {
-  const GuideFace& f = *pf.face;
-  if (f.type == GuideFace::Type::Line) return pf.normal;
-  const Vec2 d = p - pf.center;
-  if (d.x == 0.0 && d.y == 0.0) return Vec2{0.0, 1.0};
-  return f.type == GuideFace::Type::ConvexArc ? d : -1.0 * d;
-}
-
-bool faceNear(const PlacedFace& pf, Vec2 p, double reach) {
-  const double reach2 = 4.0 * reach * reach;  // (2 reach)^2
-  if (norm2(p - pf.corner0) <= reach2 || norm2(p - pf.corner1) <= reach2) return true;
-  const GuideFace& f = *pf.face;
-  if (f.type == GuideFace::Type::Line) {
-    const double along = dot(p - pf.corner0, pf.dir);
-    return along >= -2.0 * reach && along <= f.lineLength + 2.0 * reach && std::fabs(dot(p - pf.corner0, pf.normal)) <= 2.0 * reach;
-  }
-  return std::fabs(norm(p - pf.center) - f.arc.radius) <= 2.0 * reach;
 }
 
 }  // namespace chaindrive

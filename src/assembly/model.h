@@ -115,12 +115,18 @@ struct Model {
   SpanProbe tightSpan, slackSpan;
   int monitoredLink = 0;
 
-  // state layout: 6 per link (x, y, gamma, vx, vy, omega), then per rotor angle [, rate],
-  // then the two energy accumulators (input work, dissipated energy)
+  // State layout: the links' states component by component, one array over the links each
+  // (x of every link, then y, gamma, vx, vy, omega), so that the per-link loops of the solver run
+  // over contiguous memory, several links per vector instruction; then per rotor its angle [,
+  // rate]; then the two energy accumulators (input work, dissipated energy). The generalized
+  // coordinates (and forces) are laid out alike: x, y, gamma of every link, then one per rotor,
+  // so the link positions of a state are its first 3 links entries in generalized order.
+  enum LinkComponent { kX = 0, kY = 1, kGamma = 2, kVx = 3, kVy = 4, kOmega = 5 };
   int nStates = 0;
   int nGen = 0;                // generalized force entries: 3 per link + 1 per rotor
   int stateInputWork = -1, stateDissipated = -1;
-  static int linkState(int link) { return 6 * link; }
+  int linkState(int link, int component) const { return component * chain.links + link; }
+  int linkGen(int link, int component) const { return component * chain.links + link; }
   int rotorGen(int rotor) const { return 3 * chain.links + rotor; }
 
   // assembled nominal pose

@@ -67,8 +67,8 @@ std::vector<double> dAlembertForces(const Model& m, double crankSpeed) {
   for (int i = 0; i < n; ++i) {
     const PinMotion ma = pinMotion(m, m.pins[i], rates, v), mb = pinMotion(m, m.pins[(i + 1) % n], rates, v);
     const Vec2 ac = 0.5 * (ma.a + mb.a);
-    inertial[3 * i] = m.chain.mass * ac.x;
-    inertial[3 * i + 1] = m.chain.mass * ac.y;
+    inertial[m.linkGen(i, Model::kX)] = m.chain.mass * ac.x;
+    inertial[m.linkGen(i, Model::kY)] = m.chain.mass * ac.y;
   }
   return inertial;
 }
@@ -85,8 +85,8 @@ FreeCoordinates freeCoordinates(const Model& m) {
   fc.index.assign(m.nGen, -1);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) {
-      fc.index[3 * i + k] = static_cast<int>(fc.stateOf.size());
-      fc.stateOf.push_back(6 * i + k);
+      fc.index[m.linkGen(i, k)] = static_cast<int>(fc.stateOf.size());
+      fc.stateOf.push_back(m.linkState(i, k));
     }
   for (std::size_t r = 0; r < m.rotors.size(); ++r)
     if (!m.rotors[r].prescribed) {
@@ -102,7 +102,7 @@ template <class RotorValue>
 std::vector<double> perFreeCoordinate(const Model& m, const FreeCoordinates& fc, double translation, double rotation,
                                       RotorValue rotorValue) {
   std::vector<double> v(fc.stateOf.size(), translation);
-  for (int i = 0; i < m.chain.links; ++i) v[fc.index[3 * i + 2]] = rotation;
+  for (int i = 0; i < m.chain.links; ++i) v[fc.index[m.linkGen(i, Model::kGamma)]] = rotation;
   for (std::size_t r = 0; r < m.rotors.size(); ++r)
     if (!m.rotors[r].prescribed) v[fc.index[m.rotorGen(static_cast<int>(r))]] = rotorValue(r);
   return v;
@@ -111,7 +111,7 @@ std::vector<double> perFreeCoordinate(const Model& m, const FreeCoordinates& fc,
 // Link and rotor velocities of y: copied from `from`, or zero when `from` is null.
 void setVelocities(const Model& m, std::vector<double>& y, const std::vector<double>* from) {
   for (int i = 0; i < m.chain.links; ++i)
-    for (int k = 3; k < 6; ++k) y[6 * i + k] = from ? (*from)[6 * i + k] : 0.0;
+    for (int k = 3; k < 6; ++k) y[m.linkState(i, k)] = from ? (*from)[m.linkState(i, k)] : 0.0;
   for (const auto& r : m.rotors)
     if (r.stateRate >= 0) y[r.stateRate] = from ? (*from)[r.stateRate] : 0.0;
 }
@@ -187,8 +187,9 @@ void PreloadSolve::addGuideFriction() {
   for (int c = 0; c < d.nContacts; ++c) {
     const ContactPoint& cp = d.contacts[c];
     if (cp.kind != ContactPoint::Kind::PlateGuide || cp.fN <= 0.0) continue;
-    const double* s = &yNominal[6 * cp.link];
-    const Vec2 vl = Vec2{s[3], s[4]} + crossWz(s[5], cp.rLink);  // guides are at rest
+    const int L = cp.link;
+    const Vec2 vl = Vec2{yNominal[m.linkState(L, Model::kVx)], yNominal[m.linkState(L, Model::kVy)]} +
+                    crossWz(yNominal[m.linkState(L, Model::kOmega)], cp.rLink);  // guides are at rest
     const double vT = dot(vl, cp.tangent);
     const double fT = -m.plateGuide.friction * cp.fN * vT / std::sqrt(vT * vT + m.frictionRegularization * m.frictionRegularization);
     ContactPoint f = cp;
@@ -334,19 +335,14 @@ std::vector<double> nominalState(const Model& m, double crankSpeed) {
     const double len = norm(chord);
     const Vec2 e = (1.0 / len) * chord;
     const PinMotion ma = pinMotion(m, a, rates, v), mb = pinMotion(m, b, rates, v);
-    double* s = &y[6 * i];
-    s[0] = c.x;
-    s[1] = c.y;
-    s[2] = angleOf(chord);
     const Vec2 vc = 0.5 * (ma.v + mb.v);
-    s[3] = vc.x;
-    s[4] = vc.y;
-    s[5] = cross(e, mb.v - ma.v) / len;
+    const double s[6] = {c.x, c.y, angleOf(chord), vc.x, vc.y, cross(e, mb.v - ma.v) / len};
+    for (int k = 0; k < 6; ++k) y[m.linkState(i, k)] = s[k];
   }
   // keep link angles continuous along the chain (no jumps of 2 pi between neighbours)
   for (int i = 1; i < n; ++i) {
-    double& g = y[6 * i + 2];
-    const double prev = y[6 * (i - 1) + 2];
+    double& g = y[m.linkState(i, Model::kGamma)];
+    const double prev = y[m.linkState(i - 1, Model::kGamma)];
     g = prev + wrapAngle(g - prev);
   }
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {

@@ -114,6 +114,9 @@ SprocketDesc readSprocket(Fields& f, ElementNames& names) {
 void readSprockets(Fields& top, DriveDescription& desc, ElementNames& names) {
   auto list = top.objects("sprockets", true);
   if (top.has("sprockets") && list.size() < 2) top.problem("sprockets", "at least two sprockets are needed");
+  if (list.size() > static_cast<std::size_t>(kMaxSprockets))
+    top.problem("sprockets", std::to_string(list.size()) + " sprockets; at most " + std::to_string(kMaxSprockets) +
+                                 " are supported");
   for (auto& f : list)
     if (f.valid()) desc.sprockets.push_back(readSprocket(f, names));
   int nPrescribed = 0;
@@ -201,6 +204,9 @@ GuideDesc readGuide(Fields& f, ElementNames& names) {
 // The guides (optional section).
 void readGuides(Fields& top, DriveDescription& desc, ElementNames& names) {
   auto list = top.objects("guides", false);
+  if (list.size() > static_cast<std::size_t>(kMaxGuides))
+    top.problem("guides", std::to_string(list.size()) + " guides; at most " + std::to_string(kMaxGuides) +
+                              " are supported");
   for (auto& f : list)
     if (f.valid()) desc.guides.push_back(readGuide(f, names));
 }

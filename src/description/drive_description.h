@@ -128,6 +128,11 @@ struct MeasurementDesc {
   int monitoredLink = 0;
 };
 
+/// The most sprockets and guides a drive may have: the contact search marks the elements near
+/// each link as bits of one 32-bit word (two per sprocket, for the roller at either end; one
+/// per guide).
+constexpr int kMaxSprockets = 16, kMaxGuides = 32;
+
 struct DriveDescription {
   std::string name;
   double rotationSense = -1.0;   // +1 counterclockwise, -1 clockwise (running direction in the drawing)

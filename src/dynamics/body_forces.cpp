@@ -30,8 +30,8 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
   const Vec2 w = m.chain.mass * m.gravity;
   if (w.x != 0.0 || w.y != 0.0)
     for (int i = 0; i < n; ++i) {
-      d.gen[3 * i] += w.x;
-      d.gen[3 * i + 1] += w.y;
+      d.gen[m.linkGen(i, Model::kX)] += w.x;
+      d.gen[m.linkGen(i, Model::kY)] += w.y;
     }
   TensionerResult t;
   evaluateRotorForces(m, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.gen.data() + m.rotorGen(0), t,

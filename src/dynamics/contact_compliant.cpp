@@ -46,10 +46,9 @@ CompliantSlopes compliantContactSlopes(const ContactLaw& law, double vReg, const
 
 void addContactGen(const Model& m, const ContactPoint& c, double* gen) {
   const Vec2 f = c.fN * c.normal + c.fT * c.tangent;
-  double* g = gen + 3 * c.link;
-  g[0] += f.x;
-  g[1] += f.y;
-  g[2] += cross(c.rLink, f);
+  gen[m.linkGen(c.link, Model::kX)] += f.x;
+  gen[m.linkGen(c.link, Model::kY)] += f.y;
+  gen[m.linkGen(c.link, Model::kGamma)] += cross(c.rLink, f);
   if (c.rotor >= 0) gen[m.rotorGen(c.rotor)] -= cross(c.rRotor, f);
 }
 

@@ -1,21 +1,24 @@
 #include "dynamics/contact_kinematics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "dynamics/contact_lanes.h"
+#include "dynamics/link_loops.h"
 #include "sincos.h"
 
 namespace chaindrive {
 
 namespace {
 
-// The link's pose and velocities from its state and its axis e = (cos, sin) of its angle.
-LinkKin linkKinematics(const ChainModel& ch, const double* s, Vec2 e) {
+// The link's pose and velocities from its centre, velocities and its axis e = (cos, sin) of its angle.
+LinkKin linkKinematics(const ChainModel& ch, Vec2 c, Vec2 v, double w, Vec2 e) {
   LinkKin k;
-  k.c = Vec2{s[0], s[1]};
+  k.c = c;
   k.e = e;
-  k.v = Vec2{s[3], s[4]};
-  k.w = s[5];
+  k.v = v;
+  k.w = w;
   const Vec2 half = (0.5 * ch.pitch) * k.e;
   k.rear = k.c - half;
   k.front = k.c + half;
@@ -27,26 +30,16 @@ LinkKin linkKinematics(const ChainModel& ch, const double* s, Vec2 e) {
 
 }  // namespace
 
-LinkKin linkKinematics(const ChainModel& ch, const double* s) {
+LinkKin linkKinematics(const Model& m, const double* y, int link) {
   Vec2 e;
-  sinCos(s[2], e.y, e.x);
-  return linkKinematics(ch, s, e);
+  sinCos(y[m.linkState(link, Model::kGamma)], e.y, e.x);
+  return linkKinematics(m.chain, Vec2{y[m.linkState(link, Model::kX)], y[m.linkState(link, Model::kY)]},
+                        Vec2{y[m.linkState(link, Model::kVx)], y[m.linkState(link, Model::kVy)]},
+                        y[m.linkState(link, Model::kOmega)], e);
 }
 
 void evaluateKinematics(const Model& m, Data& d, const double* y) {
-  const int n = m.chain.links;
-  // the link axes first, two at a time in a loop of their own (sinCos2: the same bits as one at
-  // a time), then the rest of every link's kinematics
-  int i = 0;
-  for (; i + 2 <= n; i += 2) {
-    const double angle[2] = {y[6 * i + 2], y[6 * i + 8]};
-    double sine[2], cosine[2];
-    sinCos2(angle, sine, cosine);
-    d.links[i].e = Vec2{cosine[0], sine[0]};
-    d.links[i + 1].e = Vec2{cosine[1], sine[1]};
-  }
-  if (i < n) sinCos(y[6 * i + 2], d.links[i].e.y, d.links[i].e.x);
-  for (i = 0; i < n; ++i) d.links[i] = linkKinematics(m.chain, y + 6 * i, d.links[i].e);
+  linkKinematicsLoop(m, d, y);
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
     const double a = y[ro.stateAngle];
@@ -56,13 +49,9 @@ void evaluateKinematics(const Model& m, Data& d, const double* y) {
   }
 }
 
-namespace {
+namespace roller {
 
-// The tooth gap whose sector (from the tooth axis before it to the one after it) holds the
-// direction `body` (sprocket frame), walked to from `guess`. The sectors partition the plane
-// exactly (one cross product decides between two neighbours), so the gap found does not depend
-// on the guess: a guess only saves the search (and the atan2 a first guess costs).
-int gapOf(const SprocketModel& s, Vec2 body, int guess) {
+int searchGap(const SprocketModel& s, Vec2 body, int guess) {
   const int z = s.gap.teeth;
   int k = guess;
   if (k < 0 || k >= z) {
@@ -84,56 +73,32 @@ int gapOf(const SprocketModel& s, Vec2 body, int guess) {
   return k;
 }
 
-}  // namespace
-
-namespace {
-
-// The roller at p (rel = p - the sprocket's centre, within its reach) of link `link` at `end`
-// against sprocket `sprocket`: the contact search's inner query, inlined there.
-inline bool rollerContact(const Model& m, int sprocket, int link, int end, const LinkKin& lk, Vec2 p, Vec2 rel,
-                          double cosA, double sinA, double rate, double margin, ContactPoint& cp, int* gapHint) {
-  const SprocketModel& s = m.sprockets[sprocket];
-  // roller centre in the sprocket frame, then in the frame of its tooth gap
-  const Vec2 body = rotate(rel, cosA, -sinA);
-  const int k = gapOf(s, body, gapHint ? *gapHint : -1);
-  if (gapHint) *gapHint = k;
-  const Vec2 gd = s.gapDirs[k];
-  const Vec2 local = rotate(body, gd.x, -gd.y);
-  const ProfileHit hit = s.gap.closest(local);
-  const double gap = hit.distance - m.chain.rollerRadius;
-  if (gap >= margin) return false;
-  // back to the world frame: rotation by (rotor angle + k * gapAngle)
-  const double c = cosA * gd.x - sinA * gd.y, sn = sinA * gd.x + cosA * gd.y;
-  const Vec2 nW = rotate(hit.normal, c, sn);
-  const Vec2 qW = s.center + rotate(hit.point, c, sn);
-  cp.kind = ContactPoint::Kind::RollerSprocket;
-  cp.link = link;
-  cp.end = end;
-  cp.element = sprocket;
-  cp.face = -1;
-  cp.rotor = s.rotor;
-  cp.gap = gap;
-  cp.normal = nW;
-  cp.tangent = perp(nW);
-  cp.rLink = p - lk.c;   // the roller turns on its bushing: the force acts at the roller centre
-  cp.rRotor = qW - s.center;
-  const Vec2 vChain = end == 0 ? lk.vRear : lk.vFront;
-  const Vec2 vRel = vChain - crossWz(rate, cp.rRotor);
-  cp.vN = dot(vRel, cp.normal);
-  cp.vT = dot(vRel, cp.tangent);
-  cp.fN = cp.fT = 0.0;
-  return true;
-}
-
-}  // namespace
+}  // namespace roller
 
 bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double /*angle*/,
-                              double cosA, double sinA, double rate, double margin, ContactPoint& cp, int* gapHint) {
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp, RollerHint* hint) {
   const SprocketModel& s = m.sprockets[sprocket];
-  const Vec2 p = end == 0 ? lk.rear : lk.front;
+  const Vec2 p = end == 0 ? lk.rear : lk.front, v = end == 0 ? lk.vRear : lk.vFront;
   const Vec2 rel = p - s.center;
   if (norm2(rel) > s.reach2) return false;
-  return rollerContact(m, sprocket, link, end, lk, p, rel, cosA, sinA, rate, margin, cp, gapHint);
+  Vec2 body;
+  roller::toSprocketFrame(rel.x, rel.y, cosA, sinA, body.x, body.y);
+  if (hint && roller::stillClear(*hint, body, margin)) return false;
+  // the roller centre in the frame of its tooth gap, its closest point on the outline there
+  const int k = roller::gapOf(s, body, hint ? hint->gap : -1);
+  const Vec2 gd = s.gapDirs[k];
+  Vec2 local;
+  roller::toGapFrame(body.x, body.y, gd.x, gd.y, local.x, local.y);
+  const ProfileHit hit = s.gap.closest(local);
+  const double gap = hit.distance - m.chain.rollerRadius;
+  if (hint) *hint = RollerHint{k, body, gap >= margin ? gap : -1.0};
+  if (gap >= margin) return false;
+  const roller::World<double> w = roller::toWorld(s.center, cosA, sinA, rate, gd.x, gd.y, hit.point.x, hit.point.y,
+                                                  hit.normal.x, hit.normal.y, p.x, p.y, v.x, v.y, lk.c.x, lk.c.y);
+  const roller::World<double[1]> one{{w.normalX}, {w.normalY}, {w.tangentX}, {w.tangentY}, {w.rLinkX},
+                                     {w.rLinkY},  {w.rRotorX}, {w.rRotorY},  {w.vN},       {w.vT}};
+  roller::setContact<1>(cp, link, end, sprocket, s.rotor, gap, one, 0);
+  return true;
 }
 
 bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
@@ -142,15 +107,27 @@ bool plateGuideKinematics(const Model& m, int guide, int face, int link, const L
   return plateGuideKinematics(m, guide, face, placeFace(g.faces[face], g.pivot, cosA, sinA), link, lk, rate, margin, cp);
 }
 
-bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace& pf, int link, const LinkKin& lk,
-                          double rate, double margin, ContactPoint& cp) {
+namespace {
+
+// The edge of the link's plates that faces the placed face: -1 or +1 along perp(e).
+double facingSide(const PlacedFace& pf, Vec2 c, Vec2 e) {
+  return dot(perp(e), faceOutwardNear(pf, c)) > 0.0 ? -1.0 : 1.0;
+}
+
+// That edge's contact with the face (hit.valid false: none), the edge half the plate height
+// from the pin line.
+FaceHit plateEdgeHit(const Model& m, const PlacedFace& pf, const LinkKin& lk, double side) {
+  const Vec2 normal = side * perp(lk.e);
+  const Vec2 off = m.chain.plateHalfHeight * normal;
+  return plateEdgeFaceContact(pf, lk.rear + off, lk.front + off, normal);
+}
+
+
+}  // namespace
+
+void setPlateContact(const Model& m, int guide, int face, int link, const LinkKin& lk, const FaceHit& hit, double rate,
+                     ContactPoint& cp) {
   const GuideModel& g = m.guides[guide];
-  const Vec2 outward = faceOutwardNear(pf, lk.c);
-  const Vec2 side = perp(lk.e);
-  const double sgn = dot(side, outward) > 0.0 ? -1.0 : 1.0;  // the plate edge that faces the guide
-  const Vec2 off = (sgn * m.chain.plateHalfHeight) * side;
-  const FaceHit hit = plateEdgeFaceContact(pf, lk.rear + off, lk.front + off, sgn * side);
-  if (!hit.valid || hit.gap >= margin) return false;
   cp.kind = ContactPoint::Kind::PlateGuide;
   cp.link = link;
   cp.end = 0;
@@ -167,53 +144,86 @@ bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace&
   cp.vN = dot(vRel, cp.normal);
   cp.vT = dot(vRel, cp.tangent);
   cp.fN = cp.fT = 0.0;
+}
+
+bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace& pf, int link, const LinkKin& lk,
+                          double rate, double margin, ContactPoint& cp) {
+  const FaceHit hit = plateEdgeHit(m, pf, lk, facingSide(pf, lk.c, lk.e));
+  if (!hit.valid || hit.gap >= margin) return false;
+  setPlateContact(m, guide, face, link, lk, hit, rate, cp);
   return true;
 }
 
-void detectContacts(const Model& m, Data& d, double margin) {
-  const int n = m.chain.links;
-  const int cap = static_cast<int>(d.contacts.size());
-  int count = 0;
-  // rollers sit on the inner links (even index), one at each end; most are far from every
-  // sprocket, which one distance test tells
-  const std::size_t nSprockets = m.sprockets.size();
+namespace {
+
+// The rollers near a sprocket (d.nearSprockets) against it, sprocket by sprocket, each in the
+// order of the rollers' links and ends, several rollers at a time (contact_lanes.h). Rollers sit on
+// the inner links (even index), one at each end.
+int detectRollerContacts(const Model& m, Data& d, double margin, int count) {
+  const int n = m.chain.links, nSprockets = static_cast<int>(m.sprockets.size());
+  std::fill(d.rollerCandidateCount.begin(), d.rollerCandidateCount.end(), 0);
   for (int i = 0; i < n; i += 2) {
-    const LinkKin& lk = d.links[i];
-    for (int end = 0; end < 2; ++end) {
-      const Vec2 roller = end == 0 ? lk.rear : lk.front;
-      for (std::size_t s = 0; s < nSprockets; ++s) {
-        const SprocketModel& sp = m.sprockets[s];
-        const Vec2 rel = roller - sp.center;
-        if (norm2(rel) > sp.reach2 || count >= cap) continue;
-        const int r = sp.rotor;
-        if (rollerContact(m, static_cast<int>(s), i, end, lk, roller, rel, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r],
-                          margin, d.contacts[count], &d.gapHints[(i + end) * nSprockets + s]))
-          ++count;
-      }
+    for (auto near = static_cast<std::uint32_t>(d.nearSprockets[i]); near != 0; near &= near - 1) {
+      const int bit = __builtin_ctz(near), s = bit % kMaxSprockets, end = bit / kMaxSprockets;
+      d.rollerCandidates[s * n + d.rollerCandidateCount[s]++] = 2 * i + end;  // (in increasing order)
     }
   }
-  // a plate edge lies within reachLink of its link's centre
-  const double reachLink = std::hypot(0.5 * m.chain.pitch, m.chain.plateHalfHeight) + std::fabs(margin);
+  for (int s = 0; s < nSprockets; ++s) count = rollerContactsLoop(m, d, s, margin, count);
+  return count;
+}
+
+// The links near a guide (d.nearGuides) against its faces, in the order of links, guides and faces.
+int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink, int count) {
+  const int cap = static_cast<int>(d.contacts.size());
+  std::size_t firstFace = 0;  // of the guide, in d.placedFaces
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
     const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
     const double sinA = g.rotor >= 0 ? d.rotorSin[g.rotor] : 0.0;
     const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
+    d.plateCandidateCount = 0;
+    for (int i = 0; i < m.chain.links; ++i)
+      if (d.nearGuides[i] >> gi & 1u) d.plateCandidates[d.plateCandidateCount++] = i;
+    for (std::size_t f = 0; f < g.faces.size(); ++f) {
+      PlacedFace& pf = d.placedFaces[firstFace + f];
+      pf = placeFace(g.faces[f], g.pivot, cosA, sinA);
+      if (g.faces[f].type != GuideFace::Type::Line) {  // arcs: several links at a time
+        count = plateContactsLoop(m, d, static_cast<int>(gi), static_cast<int>(f), pf, margin, reachLink, count);
+        continue;
+      }
+      for (int k = 0; k < d.plateCandidateCount && count < cap; ++k) {
+        const LinkKin lk = d.links[d.plateCandidates[k]];
+        if (!faceNear(pf, lk.c, reachLink)) continue;
+        const FaceHit hit = plateEdgeHit(m, pf, lk, facingSide(pf, lk.c, lk.e));
+        if (hit.valid && hit.gap < margin)
+          setPlateContact(m, static_cast<int>(gi), static_cast<int>(f), d.plateCandidates[k], lk, hit, rate,
+                          d.contacts[count++]);
+      }
+    }
+    firstFace += g.faces.size();
+  }
+  return count;
+}
+
+}  // namespace
+
+void detectContacts(const Model& m, Data& d, double margin) {
+  // a plate edge lies within reachLink of its link's centre: a link is near a guide when its
+  // centre lies within the guide's bounding circle grown by twice that
+  const double reachLink = std::hypot(0.5 * m.chain.pitch, m.chain.plateHalfHeight) + std::fabs(margin);
+  for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
+    const GuideModel& g = m.guides[gi];
+    const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
+    const double sinA = g.rotor >= 0 ? d.rotorSin[g.rotor] : 0.0;
     const Vec2 bc = g.pivot + rotate(g.boundCenter - g.pivot, cosA, sinA);
     const double reach = g.boundRadius + 2.0 * reachLink;
-    const std::size_t nFaces = g.faces.size();  // d.placedFaces holds the most faces of any guide
-    for (std::size_t f = 0; f < nFaces; ++f) d.placedFaces[f] = placeFace(g.faces[f], g.pivot, cosA, sinA);
-    for (int i = 0; i < n; ++i) {
-      const LinkKin& lk = d.links[i];
-      if (norm2(lk.c - bc) > reach * reach) continue;
-      for (std::size_t f = 0; f < nFaces; ++f)
-        if (count < cap && faceNear(d.placedFaces[f], lk.c, reachLink) &&
-            plateGuideKinematics(m, static_cast<int>(gi), static_cast<int>(f), d.placedFaces[f], i, lk, rate, margin,
-                                 d.contacts[count]))
-          ++count;
-    }
+    d.guideBoundX[gi] = bc.x;
+    d.guideBoundY[gi] = bc.y;
+    d.guideReach2[gi] = reach * reach;
   }
-  d.nContacts = count;
+  nearElementsLoop(m, d);
+  const int rollers = detectRollerContacts(m, d, margin, 0);
+  d.nContacts = detectPlateContacts(m, d, margin, reachLink, rollers);
 }
 
 bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, Failure& why) {

@@ -2,6 +2,7 @@
 // from a Model so that evaluating the dynamics never allocates.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "assembly/model.h"
@@ -46,10 +47,61 @@ struct LinkKin {
   Vec2 vRear, vFront;  // pin velocities
 };
 
-struct JointState {
-  Vec2 force;               // on the front pin of link j (from link j+1)
-  double tension = 0.0;     // [N] positive in tension
-  double deformation = 0.0; // [m] radial displacement beyond the clearance
+/// The kinematics of all links, one array per quantity (structure of arrays): the per-link loops
+/// of the dynamics run over contiguous memory, several links per vector instruction. Every array
+/// has kPadding entries beyond the links: room for a loop's last, partly filled vector and for
+/// the first link's rear pin copied behind the last link (the joints' neighbour, shifted by one).
+struct LinkArrays {
+  static constexpr int kPadding = 8;
+  explicit LinkArrays(int links);
+  int size() const { return links; }
+  /// One link's kinematics gathered from the arrays (for the paths that take one link at a time).
+  LinkKin operator[](int i) const {
+    LinkKin k;
+    k.c = Vec2{cx[i], cy[i]};
+    k.v = Vec2{vx[i], vy[i]};
+    k.w = w[i];
+    k.e = Vec2{ex[i], ey[i]};
+    k.rear = Vec2{rearX[i], rearY[i]};
+    k.front = Vec2{frontX[i], frontY[i]};
+    k.vRear = Vec2{vRearX[i], vRearY[i]};
+    k.vFront = Vec2{vFrontX[i], vFrontY[i]};
+    return k;
+  }
+
+  int links = 0;
+  std::vector<double> cx, cy, vx, vy, w;  // centre, its velocity, angular velocity
+  std::vector<double> ex, ey;             // unit axis (rear pin -> front pin)
+  std::vector<double> rearX, rearY, frontX, frontY, vRearX, vRearY, vFrontX, vFrontY;  // pins
+};
+
+/// The joints' forces and measures, one array per quantity. Joint j joins link j's front pin and
+/// link j+1's rear pin (the last one link 0's). The forces are stored with the last joint's force
+/// also in front of the first (forceX()[-1]): a link's two joints, j - 1 and j, are neighbours in
+/// memory for every link, also for link 0 (the per-link loops read them as two shifted vectors).
+struct JointArrays {
+  explicit JointArrays(int joints);
+  Vec2 force(int j) const { return Vec2{fx_[j + 1], fy_[j + 1]}; }  // on link j's front pin
+  void setForce(int j, Vec2 f);
+  double* forceX() { return fx_.data() + 1; }
+  double* forceY() { return fy_.data() + 1; }
+  const double* forceX() const { return fx_.data() + 1; }
+  const double* forceY() const { return fy_.data() + 1; }
+
+  std::vector<double> tension;      // [N] positive in tension (measureJoints)
+  std::vector<double> deformation;  // [m] radial displacement beyond the clearance (measureJoints)
+
+ private:
+  int joints_ = 0;
+  std::vector<double> fx_, fy_;
+};
+
+/// What the last query of a roller against a sprocket found, to make the next one cheap; the
+/// results never depend on it (contact_kinematics.cpp).
+struct RollerHint {
+  int gap = -1;             // the tooth gap of its sector (the search's first guess; -1: none)
+  Vec2 body;                // its centre in the sprocket's frame ...
+  double clearance = -1.0;  // ... where its gap was this [m] and it touched nothing (< 0: none)
 };
 
 /// One closed (or nearly closed) contact with its kinematics: gap, normal and tangent, lever
@@ -78,16 +130,33 @@ struct Data {
   bool jointForces = true;
 
   InputValues inputs;
-  std::vector<LinkKin> links;                 // (links)
+  LinkArrays links;                           // (links)
   std::vector<double> rotorAngle, rotorRate;  // (rotors) math sense
   std::vector<double> rotorCos, rotorSin;     // (rotors)
-  std::vector<JointState> joints;             // (links) joint j: link j front pin - link j+1 rear pin
+  JointArrays joints;                         // (links) joint j: link j front pin - link j+1 rear pin
+  double jointOpening2 = 0.0;                 // [m^2] the largest squared pin separation of the joints'
+                                              // last evaluation (the health check's blow-up test)
+  int vectorLanes = 2;                        // lanes of the per-link loops: 4 (AVX2) where the CPU
+                                              // has them, else 2 (SSE2); the same bits either way
   std::vector<ContactPoint> contacts;         // capacity fixed at construction
-  std::vector<PlacedFace> placedFaces;        // (most faces of a guide) a guide's faces at its angle
-  std::vector<int> gapHints;                  // (rollers x sprockets) tooth gap found last: a search
-                                              // guess only (results never depend on it)
+  std::vector<PlacedFace> placedFaces;        // (guide faces, guide by guide) placed at their guide's angle
+  std::vector<double> guideBoundX, guideBoundY, guideReach2;  // (guides) the bounding circles of the
+                                              // contact search: centre at the guide's angle, (radius + reach)^2
+  std::vector<long long> nearSprockets;       // (links + padding) bit end * kMaxSprockets + s: that end's
+                                              // roller within sprocket s's reach (rollers: the even links')
+  std::vector<long long> nearGuides;          // (links + padding) bit g: the link's centre within guide
+                                              // g's bounding circle
+  std::vector<int> rollerCandidates;          // (sprockets x links) per sprocket the rollers near it, as
+                                              // 2 link + end, in increasing order ...
+  std::vector<int> rollerCandidateCount;      // (sprockets) ... and how many
+  std::vector<int> plateCandidates;           // (links) the links near the guide being searched ...
+  int plateCandidateCount = 0;                // ... and how many
+  std::vector<RollerHint> rollerHints;        // (rollers x sprockets) what the last query found: search
+                                              // guesses and bounds only (results never depend on them)
+  long long rollerQueries = 0, rollerQueriesSkipped = 0;  // near rollers, and those the bound cleared
   int nContacts = 0;
-  std::vector<double> gen;                    // (nGen) generalized forces
+  std::vector<double> gen;                    // (nGen) generalized forces, laid out as the
+                                              // generalized coordinates (model.h)
   // tensioner
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   // power terms

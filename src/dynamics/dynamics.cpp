@@ -7,28 +7,54 @@
 #include "dynamics/contact_compliant.h"
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/joint_forces.h"
+#include "dynamics/link_loops.h"
 
 namespace chaindrive {
 
 // Every work array sized once here: the contacts for every link against every sprocket and
 // guide face (the most detectContacts can find), so that no evaluation allocates.
-Data::Data(const Model& m) {
+LinkArrays::LinkArrays(int n) : links(n) {
+  for (std::vector<double>* a : {&cx, &cy, &vx, &vy, &w, &ex, &ey, &rearX, &rearY, &frontX, &frontY, &vRearX, &vRearY,
+                                 &vFrontX, &vFrontY})
+    a->assign(static_cast<std::size_t>(n + kPadding), 0.0);
+}
+
+JointArrays::JointArrays(int joints)
+    : tension(joints, 0.0),
+      deformation(joints, 0.0),
+      joints_(joints),
+      fx_(static_cast<std::size_t>(joints + 1 + LinkArrays::kPadding), 0.0),
+      fy_(static_cast<std::size_t>(joints + 1 + LinkArrays::kPadding), 0.0) {}
+
+void JointArrays::setForce(int j, Vec2 f) {
+  fx_[j + 1] = f.x;
+  fy_[j + 1] = f.y;
+  if (j == joints_ - 1) {  // (its copy in front of the first joint)
+    fx_[0] = f.x;
+    fy_[0] = f.y;
+  }
+}
+
+Data::Data(const Model& m) : links(m.chain.links), joints(m.chain.links), vectorLanes(supportedVectorLanes()) {
   inputs.loadTorque.assign(m.rotors.size(), 0.0);
-  links.resize(m.chain.links);
   rotorAngle.assign(m.rotors.size(), 0.0);
   rotorRate.assign(m.rotors.size(), 0.0);
   rotorCos.assign(m.rotors.size(), 1.0);
   rotorSin.assign(m.rotors.size(), 0.0);
-  joints.resize(m.chain.links);
-  std::size_t faces = 0, mostFaces = 0;
-  for (const auto& g : m.guides) {
-    faces += g.faces.size();
-    mostFaces = std::max(mostFaces, g.faces.size());
-  }
-  placedFaces.resize(mostFaces);
+  std::size_t faces = 0;
+  for (const auto& g : m.guides) faces += g.faces.size();
+  placedFaces.resize(faces);
+  guideBoundX.assign(m.guides.size(), 0.0);
+  guideBoundY.assign(m.guides.size(), 0.0);
+  guideReach2.assign(m.guides.size(), 0.0);
+  nearSprockets.assign(static_cast<std::size_t>(m.chain.links + LinkArrays::kPadding), 0);
+  nearGuides.assign(static_cast<std::size_t>(m.chain.links + LinkArrays::kPadding), 0);
   contacts.resize(static_cast<std::size_t>(m.chain.links) * (m.sprockets.size() + faces));
   gen.assign(m.nGen, 0.0);
-  gapHints.assign((m.chain.links + 1) * m.sprockets.size(), -1);
+  rollerCandidates.assign(m.sprockets.size() * static_cast<std::size_t>(m.chain.links), 0);
+  rollerCandidateCount.assign(m.sprockets.size(), 0);
+  plateCandidates.assign(static_cast<std::size_t>(m.chain.links), 0);
+  rollerHints.assign((m.chain.links + 1) * m.sprockets.size(), RollerHint{});
 }
 
 // Stages 1-5 of dynamics.h, the generalized forces summed into d.gen and the powers kept.
@@ -36,9 +62,12 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   ++d.rhsEvaluations;
   in.evaluate(t, d.inputs);
   evaluateKinematics(m, d, y);
-  std::fill(d.gen.begin(), d.gen.end(), 0.0);
+  // the joints write the links' generalized forces, the later stages add to them
+  const auto rotorGen = d.gen.begin() + m.rotorGen(0);
+  std::fill(rotorGen, d.gen.end(), 0.0);
   double pIn = 0.0, pDiss = 0.0;
   if (d.jointForces) pDiss += evaluateJoints(m, d);
+  else std::fill(d.gen.begin(), rotorGen, 0.0);
   if (d.compliantContacts) {
     detectContacts(m, d, 0.0);
     pDiss += evaluateCompliantContacts(m, d);
@@ -55,17 +84,11 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
   // links: positions move with their velocities, velocities with force over mass (diagonal)
   const int n = m.chain.links;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
-  for (int i = 0; i < n; ++i) {
-    const double* s = y + 6 * i;
-    double* o = ydot + 6 * i;
-    const double* g = &d.gen[3 * i];
-    o[0] = s[3];
-    o[1] = s[4];
-    o[2] = s[5];
-    o[3] = g[0] * invM;
-    o[4] = g[1] * invM;
-    o[5] = g[2] * invJ;
-  }
+  std::copy(y + 3 * n, y + 6 * n, ydot);
+  const double* g = d.gen.data();
+  double* a = ydot + 3 * n;
+  for (int i = 0; i < 2 * n; ++i) a[i] = g[i] * invM;
+  for (int i = 2 * n; i < 3 * n; ++i) a[i] = g[i] * invJ;
   // rotors: the driven one follows the crankshaft input, the free ones their torque over inertia
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
@@ -85,8 +108,9 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
   EnergyTerms e;
   const int n = m.chain.links;
   for (int i = 0; i < n; ++i) {
-    const double* s = y + 6 * i;
-    e.kinetic += 0.5 * m.chain.mass * (s[3] * s[3] + s[4] * s[4]) + 0.5 * m.chain.inertia * s[5] * s[5];
+    const double vx = y[m.linkState(i, Model::kVx)], vy = y[m.linkState(i, Model::kVy)];
+    const double w = y[m.linkState(i, Model::kOmega)];
+    e.kinetic += 0.5 * m.chain.mass * (vx * vx + vy * vy) + 0.5 * m.chain.inertia * w * w;
   }
   for (const RotorModel& r : m.rotors)
     if (!r.prescribed) e.kinetic += 0.5 * r.inertia * y[r.stateRate] * y[r.stateRate];

@@ -14,25 +14,10 @@
 
 namespace chaindrive {
 
-/// True if every x[0..n) is finite: x * 0 is 0 for a finite x and NaN otherwise, summed in two
-/// independent sums of pairs (the check of every step and every derivative: no branch per
-/// component; GCC's and Clang's vector extensions keep each pair in one SSE2 register).
-inline bool allFinite(const double* x, int n) {
-  typedef double Pair __attribute__((vector_size(16)));
-  Pair s0 = {0.0, 0.0}, s1 = {0.0, 0.0};
-  int i = 0;
-  for (; i + 4 <= n; i += 4) {
-    Pair a, b;
-    std::memcpy(&a, x + i, sizeof a);
-    std::memcpy(&b, x + i + 2, sizeof b);
-    s0 += a * 0.0;
-    s1 += b * 0.0;
-  }
-  double rest = 0.0;
-  for (; i < n; ++i) rest += x[i] * 0.0;
-  const Pair s = s0 + s1;
-  return s[0] + s[1] + rest == 0.0;
-}
+/// True if every x[0..n) is finite: x * 0 is 0 for a finite x and NaN otherwise, summed in
+/// vectors (the check of every step and every derivative: no branch per component; AVX2 where the
+/// CPU has it).
+bool allFinite(const double* x, int n);
 
 /// False if some of x[0..n) is not finite.
 inline bool finiteState(const double* x, int n, Failure& why) {

@@ -41,7 +41,7 @@ void addJoints(const Model& m, const Data& d, double a, double b, CyclicBlockTri
   for (int j = 0; j < n; ++j) {
     const int k = j + 1 == n ? 0 : j + 1;
     const LinkKin &la = d.links[j], &lb = d.links[k];
-    const Vec2 force = d.joints[j].force;  // on link j's front pin; link k gets the opposite
+    const Vec2 force = d.joints.force(j);  // on link j's front pin; link k gets the opposite
     const Vec2 u = la.front - la.c, v = lb.rear - lb.c;
     const PointJacobian ja = pointJacobian(u), jb = pointJacobian(v);
     const Eigen::Matrix2d s = jointPinMatrix(m.chain, la, lb, force, a, b);

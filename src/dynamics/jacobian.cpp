@@ -22,7 +22,7 @@ constexpr double kDxRate = 1e-5;       // rad/s
 
 double perturbation(const Model& m, int state) {
   if (state < 6 * m.chain.links) {
-    const int k = state % 6;
+    const int k = state / m.chain.links;  // the link component (model.h)
     return k < 2 ? kDxPosition : k == 2 ? kDxAngle : k < 5 ? kDxVelocity : kDxRate;
   }
   for (const auto& r : m.rotors) {
@@ -57,12 +57,12 @@ JacobianAssembler::JacobianAssembler(const Model& m) {
     if (r.stateRate >= 0) rotorStates.push_back(r.stateRate);
   }
   for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) add(6 * i + k, 6 * i + 3 + k);
+    for (int k = 0; k < 3; ++k) add(m.linkState(i, k), m.linkState(i, 3 + k));
     for (int nb : {(i + n - 1) % n, i, (i + 1) % n})
       for (int k = 0; k < 6; ++k)
-        for (int r = 3; r < 6; ++r) add(6 * i + r, 6 * nb + k);
+        for (int r = 3; r < 6; ++r) add(m.linkState(i, r), m.linkState(nb, k));
     for (int s : rotorStates)
-      for (int r = 3; r < 6; ++r) add(6 * i + r, s);
+      for (int r = 3; r < 6; ++r) add(m.linkState(i, r), s);
   }
   for (const auto& r : m.rotors) {
     if (r.prescribed) continue;
@@ -86,7 +86,7 @@ int JacobianAssembler::find(int64_t row, int64_t col) const {
 
 int JacobianAssembler::genRow(const Model& m, int gen) const {
   const int n3 = 3 * m.chain.links;
-  if (gen < n3) return 6 * (gen / 3) + 3 + gen % 3;
+  if (gen < n3) return n3 + gen;  // the velocity of a link coordinate (model.h)
   return m.rotors[gen - n3].stateRate;  // -1 for the driven rotor
 }
 
@@ -107,7 +107,7 @@ void JacobianAssembler::differentiateJoints(const Model& m, Sink& sink) {
   for (int j = 0; j < n; ++j) {
     const int k = j + 1 == n ? 0 : j + 1;
     auto eval = [&](double out[6]) {
-      const LinkKin a = linkKinematics(m.chain, y + 6 * j), b = linkKinematics(m.chain, y + 6 * k);
+      const LinkKin a = linkKinematics(m, y, j), b = linkKinematics(m, y, k);
       const JointResult r = jointForce(m.chain, a, b);
       std::fill(out, out + 6, 0.0);
       addJointGen(a, b, r.force, out, out + 3);
@@ -117,14 +117,14 @@ void JacobianAssembler::differentiateJoints(const Model& m, Sink& sink) {
     for (int side = 0; side < 2; ++side) {
       const int link = side == 0 ? j : k;
       for (int q = 0; q < 6; ++q) {
-        const int col = 6 * link + q;
+        const int col = m.linkState(link, q);
         const double h = perturbation(m, col), keep = y[col];
         y[col] = keep + h;
         eval(pert);
         y[col] = keep;
         for (int g = 0; g < 6; ++g) {
           const double dq = (pert[g] - base[g]) / h;
-          if (dq != 0.0) sink(3 * (g < 3 ? j : k) + g % 3, col, dq);
+          if (dq != 0.0) sink(m.linkGen(g < 3 ? j : k, g % 3), col, dq);
         }
       }
     }
@@ -141,7 +141,7 @@ void JacobianAssembler::differentiateContacts(const Model& m, const Data& d, Sin
     const int r = id.rotor;
     auto eval = [&](double out[4]) {
       ContactPoint c;
-      const LinkKin lk = linkKinematics(m.chain, y + 6 * id.link);
+      const LinkKin lk = linkKinematics(m, y, id.link);
       double angle = 0, cs = 1, sn = 0, rate = 0;
       if (r >= 0) rotorState(m, d, y, r, angle, cs, sn, rate);
       bool ok;
@@ -161,7 +161,7 @@ void JacobianAssembler::differentiateContacts(const Model& m, const Data& d, Sin
     };
     int cols[8];
     int nc = 0;
-    for (int q = 0; q < 6; ++q) cols[nc++] = 6 * id.link + q;
+    for (int q = 0; q < 6; ++q) cols[nc++] = m.linkState(id.link, q);
     if (r >= 0) {
       cols[nc++] = m.rotors[r].stateAngle;
       if (m.rotors[r].stateRate >= 0) cols[nc++] = m.rotors[r].stateRate;
@@ -177,7 +177,7 @@ void JacobianAssembler::differentiateContacts(const Model& m, const Data& d, Sin
       for (int g = 0; g < 4; ++g) {
         if (g == 3 && r < 0) continue;
         const double dq = (pert[g] - base[g]) / h;
-        if (dq != 0.0) sink(g < 3 ? 3 * id.link + g : m.rotorGen(r), col, dq);
+        if (dq != 0.0) sink(g < 3 ? m.linkGen(id.link, g) : m.rotorGen(r), col, dq);
       }
     }
   }
@@ -217,7 +217,7 @@ void JacobianAssembler::assemble(const Model& m, Data& d, const InputSignal& in,
   std::fill(values, values + nnz(), 0.0);
   const int n = m.chain.links;
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) values[find(6 * i + k, 6 * i + 3 + k)] = 1.0;
+    for (int k = 0; k < 3; ++k) values[find(m.linkState(i, k), m.linkState(i, 3 + k))] = 1.0;
   for (const auto& r : m.rotors)
     if (!r.prescribed) values[find(r.stateAngle, r.stateRate)] = 1.0;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
@@ -225,7 +225,7 @@ void JacobianAssembler::assemble(const Model& m, Data& d, const InputSignal& in,
     const int row = genRow(m, gen);
     if (row < 0) return;
     double scale;
-    if (gen < 3 * n) scale = gen % 3 == 2 ? invJ : invM;
+    if (gen < 3 * n) scale = gen >= m.linkGen(0, Model::kGamma) ? invJ : invM;
     else scale = 1.0 / m.rotors[gen - 3 * n].inertia;
     const int idx = find(row, col);
     if (idx >= 0) values[idx] += dq * scale;
@@ -240,7 +240,7 @@ void JacobianAssembler::stiffness(const Model& m, Data& d, const InputSignal& in
   const int n = m.chain.links;
   // state column -> generalized coordinate (positions only)
   auto genOfState = [&](int col) -> int {
-    if (col < 6 * n) return col % 6 < 3 ? 3 * (col / 6) + col % 6 : -1;
+    if (col < 6 * n) return col < 3 * n ? col : -1;  // link positions: the generalized order (model.h)
     for (std::size_t r = 0; r < m.rotors.size(); ++r)
       if (m.rotors[r].stateAngle == col) return m.rotorGen(static_cast<int>(r));
     return -1;

@@ -3,28 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/link_loops.h"
+
 namespace chaindrive {
 
 JointResult jointForce(const ChainModel& ch, const LinkKin& a, const LinkKin& b) {
   JointResult r;
   const Vec2 dpos = a.front - b.rear;          // separation of the two pin centres
   const Vec2 dvel = a.vFront - b.vRear;
+  journalBearing(ch, dpos.x, dpos.y, dvel.x, dvel.y, r.force.x, r.force.y, r.power);
   if (ch.jointClearance <= 0.0) {
-    r.force = -ch.jointStiffness * dpos - ch.jointDamping * dvel;
-    r.power = ch.jointDamping * dot(dvel, dvel);
     r.energy = 0.5 * ch.jointStiffness * dot(dpos, dpos);
   } else {
-    const double dist = norm(dpos);
-    const double pen = dist - ch.jointClearance;
-    if (pen > 0.0) {
-      const Vec2 nrm = (1.0 / dist) * dpos;
-      const double rate = dot(dvel, nrm);
-      double f = ch.jointStiffness * pen + ch.jointDamping * rate;
-      if (f < 0.0) f = 0.0;
-      r.force = -f * nrm;
-      r.power = (f - ch.jointStiffness * pen) * rate;
-      r.energy = 0.5 * ch.jointStiffness * pen * pen;
-    }
+    const double pen = std::max(0.0, norm(dpos) - ch.jointClearance);
+    r.energy = 0.5 * ch.jointStiffness * pen * pen;
   }
   return r;
 }
@@ -40,33 +32,23 @@ double jointTension(const LinkKin& a, const LinkKin& b, Vec2 force) {
   return dot(force, axisN > 0.0 ? (1.0 / axisN) * axis : a.e);
 }
 
-double evaluateJoints(const Model& m, Data& d) {
-  const int n = m.chain.links;
-  double power = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const int k = j + 1 == n ? 0 : j + 1;
-    const JointResult r = jointForce(m.chain, d.links[j], d.links[k]);
-    d.joints[j].force = r.force;
-    addJointGen(d.links[j], d.links[k], r.force, &d.gen[3 * j], &d.gen[3 * k]);
-    power += r.power;
-  }
-  return power;
-}
+double evaluateJoints(const Model& m, Data& d) { return jointForcesLoop(m, d); }
 
 void measureJoints(const Model& m, Data& d) {
   const int n = m.chain.links;
   for (int j = 0; j < n; ++j) {
-    const LinkKin &a = d.links[j], &b = d.links[j + 1 == n ? 0 : j + 1];
-    d.joints[j].tension = jointTension(a, b, d.joints[j].force);
-    d.joints[j].deformation = jointDeformation(m.chain, a, b);
+    const LinkKin a = d.links[j], b = d.links[j + 1 == n ? 0 : j + 1];
+    d.joints.tension[j] = jointTension(a, b, d.joints.force(j));
+    d.joints.deformation[j] = jointDeformation(m.chain, a, b);
   }
 }
 
 bool jointsWithin(const Model& m, const Data& d, double limit) {
+  const double reach = limit + std::max(0.0, m.chain.jointClearance);
+  if (d.jointForces) return d.jointOpening2 <= reach * reach;  // (false for NaN)
   const int n = m.chain.links;
-  const double reach = limit + std::max(0.0, m.chain.jointClearance), reach2 = reach * reach;
   bool within = true;
-  for (int j = 0; j < n; ++j) within &= norm2(d.links[j].front - d.links[j + 1 == n ? 0 : j + 1].rear) <= reach2;
+  for (int j = 0; j < n; ++j) within &= norm2(d.links[j].front - d.links[j + 1 == n ? 0 : j + 1].rear) <= reach * reach;
   return within;
 }
 

@@ -67,6 +67,9 @@ class CvodeBdf : public Integrator {
         check(CVodeSetJacFn(mem_, cvodeJacobian), "CVodeSetJacFn");
       } else {
         const int bw = sys_.halfBandwidth();
+        if (bw < 0)
+          throw std::invalid_argument("cvode-bdf-band needs a system whose Jacobian is banded; the link model's is not "
+                                      "(its state is laid out component by component): use cvode-bdf-klu");
         A_ = SUNBandMatrix(sys_.size(), bw, bw, ctx_.ctx);
         ls_ = SUNLinSol_Band(y_.v, A_, ctx_.ctx);
         if (!A_ || !ls_) throw std::runtime_error("cannot create the band solver");

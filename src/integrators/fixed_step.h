@@ -47,19 +47,18 @@ class ComponentSet {
   /// Calls f(i, partner of i) for every component.
   template <class F>
   void forEach(F f) const {
-    for (const Block& b : blocks_) {
-      const int offset = b.partnerOffset;
-      if (b.width == 3) {  // planar bodies (x, y, angle): unrolled
-        for (int k = 0, i = b.first; k < b.count; ++k, i += b.stride) {
-          f(i, i + offset);
-          f(i + 1, i + 1 + offset);
-          f(i + 2, i + 2 + offset);
-        }
-      } else {
-        for (int k = 0, i = b.first; k < b.count; ++k, i += b.stride)
-          for (int c = 0; c < b.width; ++c) f(i + c, i + c + offset);
-      }
-    }
+    forEachRun([&f](int first, int partner, int count) {
+      for (int c = 0; c < count; ++c) f(first + c, partner + c);
+    });
+  }
+
+  /// Calls f(first, its partner, count) for every run of consecutive components (their partners
+  /// consecutive too), in increasing order: the schemes' loops over contiguous memory (a drive's
+  /// links are one run, model.h).
+  template <class F>
+  void forEachRun(F f) const {
+    for (const Block& b : blocks_)
+      for (int k = 0, i = b.first; k < b.count; ++k, i += b.stride) f(i, i + b.partnerOffset, b.width);
   }
 
  private:
@@ -68,6 +67,11 @@ class ComponentSet {
   };
   std::vector<Block> blocks_;
 };
+
+/// y[i] += a x[i] for i < n, x and y not overlapping: the schemes' kicks and drifts, one loop in
+/// vector instructions (AVX2 where the CPU has it; each element the same operations as one at a
+/// time, without FMA: the same bits on every x86-64 machine).
+void addScaled(double* __restrict y, const double* __restrict x, double a, int n);
 
 /// The components of a system in the schemes' three roles.
 struct ComponentRoles {

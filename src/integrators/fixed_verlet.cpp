@@ -25,12 +25,12 @@ class FixedVerlet : public FixedStepScheme {
     const double hh = 0.5 * h;
     const double* f = f_.data();
     const double* fNew = fNew_.data();
-    velocities_.forEach([&](int i, int) { y[i] += hh * f[i]; });     // kick
-    positions_.forEach([&](int i, int v) { y[i] += h * y[v]; });     // drift
+    velocities_.forEachRun([&](int i, int, int n) { addScaled(y + i, f + i, hh, n); });  // kick
+    positions_.forEachRun([&](int i, int v, int n) { addScaled(y + i, y + v, h, n); });  // drift
     // prescribed angles and accumulators: predictor with the old derivative, corrected below
-    others_.forEach([&](int i, int) { y[i] += h * f[i]; });
+    others_.forEachRun([&](int i, int, int n) { addScaled(y + i, f + i, h, n); });
     check(tNext, sys_.rhs(tNext, y, fNew_.data()), "right-hand side failed: ");
-    velocities_.forEach([&](int i, int) { y[i] += hh * fNew[i]; });  // kick
+    velocities_.forEachRun([&](int i, int, int n) { addScaled(y + i, fNew + i, hh, n); });  // kick
     others_.forEach([&](int i, int) { y[i] += hh * (fNew[i] - f[i]); });  // trapezoidal
     finishStep(h, tNext);
   }

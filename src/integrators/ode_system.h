@@ -31,7 +31,8 @@ class OdeSystem {
   /// outside that part). Returns as rhs does.
   virtual bool hasStiffSolve() const { return false; }
   virtual int solveStiff(double /*a*/, double /*b*/, double* /*r*/) noexcept { return -1; }
-  /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations.
+  /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations; -1 when
+  /// df/dy has no such band (the band solver then refuses the system).
   virtual int halfBandwidth() const { return size(); }
   /// Typical magnitude of the error that matters, per component: atol_i = rtol * scale_i.
   virtual void toleranceScales(double* scale) const = 0;

@@ -35,8 +35,8 @@ RigidContactDrive::RigidContactDrive(std::shared_ptr<const Model> m, const Input
   n_ = 3 * md.chain.links + static_cast<int>(md.rotors.size());
   minv_.assign(n_, 0.0);
   for (int i = 0; i < md.chain.links; ++i) {
-    minv_[3 * i] = minv_[3 * i + 1] = 1.0 / md.chain.mass;
-    minv_[3 * i + 2] = 1.0 / md.chain.inertia;
+    minv_[md.linkGen(i, Model::kX)] = minv_[md.linkGen(i, Model::kY)] = 1.0 / md.chain.mass;
+    minv_[md.linkGen(i, Model::kGamma)] = 1.0 / md.chain.inertia;
   }
   for (std::size_t r = 0; r < md.rotors.size(); ++r)
     minv_[md.rotorGen(static_cast<int>(r))] = md.rotors[r].prescribed ? 0.0 : 1.0 / md.rotors[r].inertia;
@@ -53,8 +53,8 @@ void RigidContactDrive::unpack(const double* y, double* q, double* v) const {
   const Model& m = *model_;
   for (int i = 0; i < m.chain.links; ++i)
     for (int k = 0; k < 3; ++k) {
-      q[3 * i + k] = y[6 * i + k];
-      v[3 * i + k] = y[6 * i + 3 + k];
+      q[m.linkGen(i, k)] = y[m.linkState(i, k)];
+      v[m.linkGen(i, k)] = y[m.linkState(i, 3 + k)];
     }
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const int g = m.rotorGen(static_cast<int>(r));
@@ -67,8 +67,8 @@ void RigidContactDrive::pack(const double* q, const double* v, double* y) const 
   const Model& m = *model_;
   for (int i = 0; i < m.chain.links; ++i)
     for (int k = 0; k < 3; ++k) {
-      y[6 * i + k] = q[3 * i + k];
-      y[6 * i + 3 + k] = v[3 * i + k];
+      y[m.linkState(i, k)] = q[m.linkGen(i, k)];
+      y[m.linkState(i, 3 + k)] = v[m.linkGen(i, k)];
     }
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const int g = m.rotorGen(static_cast<int>(r));
@@ -124,7 +124,7 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
     for (int sgn : {1, -1}) {
       for (int i = 0; i < m.nStates; ++i) yp_[i] = y_[i];
       for (int i = 0; i < m.chain.links; ++i)
-        for (int k = 0; k < 3; ++k) yp_[6 * i + k] += sgn * eps * y_[6 * i + 3 + k];
+        for (int k = 0; k < 3; ++k) yp_[m.linkState(i, k)] += sgn * eps * y_[m.linkState(i, 3 + k)];
       // prescribed rotors turn on at their rate at t (their acceleration is in W qddot)
       dp_.inputs = d_.inputs;
       for (const RotorModel& r : m.rotors)
@@ -146,10 +146,10 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
     k2.tag = static_cast<int>(k);
     double wl[3], wr;
     wColumn(c, c.normal, wl, wr);
-    for (int j = 0; j < 3; ++j) k2.wN.add(3 * c.link + j, wl[j]);
+    for (int j = 0; j < 3; ++j) k2.wN.add(m.linkGen(c.link, j), wl[j]);
     if (c.rotor >= 0) k2.wN.add(m.rotorGen(c.rotor), wr);
     wColumn(c, c.tangent, wl, wr);
-    for (int j = 0; j < 3; ++j) k2.wT.add(3 * c.link + j, wl[j]);
+    for (int j = 0; j < 3; ++j) k2.wT.add(m.linkGen(c.link, j), wl[j]);
     if (c.rotor >= 0) k2.wT.add(m.rotorGen(c.rotor), wr);
     k2.mu = k2.muStatic = law.friction;
     k2.restitution = law.restitution;
@@ -177,10 +177,10 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
       for (int axis = 0; axis < 2; ++axis) {
         ns::Bilateral bl;
         bl.g = axis == 0 ? dpos.x : dpos.y;
-        bl.w.add(3 * j + axis, 1.0);
-        bl.w.add(3 * j + 2, axis == 0 ? pa.x : pa.y);
-        bl.w.add(3 * k + axis, -1.0);
-        bl.w.add(3 * k + 2, axis == 0 ? pb.x : pb.y);
+        bl.w.add(m.linkGen(j, axis), 1.0);
+        bl.w.add(m.linkGen(j, Model::kGamma), axis == 0 ? pa.x : pa.y);
+        bl.w.add(m.linkGen(k, axis), -1.0);
+        bl.w.add(m.linkGen(k, Model::kGamma), axis == 0 ? pb.x : pb.y);
         bl.wbar = accelerations ? (axis == 0 ? wbar.x : wbar.y) : 0.0;
         out.bilateral.push_back(bl);
       }

@@ -18,7 +18,7 @@ double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
     if (!(aj <= 0.0 && ak > 0.0)) continue;
     if (std::fabs(cross(probe.direction, pj - probe.point)) > near) continue;
     const double w = -aj / (ak - aj);
-    return (1.0 - w) * d.joints[j].tension + w * d.joints[k].tension;
+    return (1.0 - w) * d.joints.tension[j] + w * d.joints.tension[k];
   }
   return std::nan("");
 }
@@ -58,10 +58,10 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   if (rigid && rigid->joints && static_cast<int>(rigid->joints->size()) == 2 * m.chain.links) {
     const int n = m.chain.links;
     for (int j = 0; j < n; ++j) {
-      JointState& js = d.joints[j];
-      js.force = Vec2{(*rigid->joints)[2 * j], (*rigid->joints)[2 * j + 1]};
-      js.tension = jointTension(d.links[j], d.links[(j + 1) % n], js.force);
-      js.deformation = norm(d.links[j].front - d.links[(j + 1) % n].rear);
+      const Vec2 force{(*rigid->joints)[2 * j], (*rigid->joints)[2 * j + 1]};
+      d.joints.setForce(j, force);
+      d.joints.tension[j] = jointTension(d.links[j], d.links[(j + 1) % n], force);
+      d.joints.deformation[j] = norm(d.links[j].front - d.links[(j + 1) % n].rear);
     }
   }
   // rotors: angles from their start, rates and the chain's torque on them, in the output sense
@@ -85,9 +85,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   const int n = m.chain.links;
   const int L = (monitoredLink >= 0 && monitoredLink < n) ? monitoredLink : m.monitoredLink;
   const LinkKin& lk = d.links[L];
-  const JointState& front = d.joints[L];
-  const JointState& rear = d.joints[(L + n - 1) % n];
-  out.linkTension = 0.5 * (dot(front.force, lk.e) + dot(rear.force, lk.e));
+  out.linkTension = 0.5 * (dot(d.joints.force(L), lk.e) + dot(d.joints.force((L + n - 1) % n), lk.e));
   out.linkPosition = lk.c;
   out.linkNormalForce = out.linkSprocketForce = out.linkGuideForce = 0.0;
   for (int i = 0; i < d.nContacts; ++i) {
@@ -101,7 +99,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   out.contacts = 0;
   for (int i = 0; i < d.nContacts; ++i) out.contacts += d.contacts[i].fN > 0.0 ? 1 : 0;
   out.maxJointDeformation = 0.0;
-  for (int j = 0; j < n; ++j) out.maxJointDeformation = std::max(out.maxJointDeformation, d.joints[j].deformation);
+  for (int j = 0; j < n; ++j) out.maxJointDeformation = std::max(out.maxJointDeformation, d.joints.deformation[j]);
 }
 
 }  // namespace chaindrive

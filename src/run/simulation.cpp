@@ -24,8 +24,8 @@ DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, 
   isVelocity_.assign(md.nStates, 0);
   for (int i = 0; i < md.chain.links; ++i)
     for (int k = 0; k < 3; ++k) {
-      velocityOf_[6 * i + k] = 6 * i + 3 + k;
-      isVelocity_[6 * i + 3 + k] = 1;
+      velocityOf_[md.linkState(i, k)] = md.linkState(i, 3 + k);
+      isVelocity_[md.linkState(i, 3 + k)] = 1;
     }
   for (const auto& r : md.rotors)
     if (!r.prescribed) {
@@ -70,22 +70,21 @@ int DriveSystem::solveStiff(double a, double b, double* r) noexcept {
     lastError_ = {FailureKind::NewtonFailure, "the links' iteration matrix is singular"};
     return 1;
   }
+  // the ring's unknowns are per link (x, y, gamma); the state holds them component by component
   const double mass[3] = {m.chain.mass, m.chain.mass, m.chain.inertia};
-  for (int i = 0; i < 3 * m.chain.links; ++i) linkRhs_[i] = mass[i % 3] * r[6 * (i / 3) + 3 + i % 3];
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) linkRhs_[3 * i + k] = mass[k] * r[m.linkState(i, 3 + k)];
   iteration_.solve(linkRhs_.data());
-  for (int i = 0; i < 3 * m.chain.links; ++i) r[6 * (i / 3) + 3 + i % 3] = linkRhs_[i];
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) r[m.linkState(i, 3 + k)] = linkRhs_[3 * i + k];
   return 0;
 }
 
 void DriveSystem::toleranceScales(double* scale) const {
   const Model& m = *model_;
-  for (int i = 0; i < m.chain.links; ++i) {
-    double* s = scale + 6 * i;
-    s[0] = s[1] = 1e-3;  // m
-    s[2] = 1e-1;         // rad
-    s[3] = s[4] = 1.0;   // m/s
-    s[5] = 1e2;          // rad/s
-  }
+  const double linkScale[6] = {1e-3, 1e-3, 1e-1, 1.0, 1.0, 1e2};  // m, m, rad, m/s, m/s, rad/s
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 0; k < 6; ++k) scale[m.linkState(i, k)] = linkScale[k];
   for (const auto& r : m.rotors) {
     scale[r.stateAngle] = 1e-2;
     if (r.stateRate >= 0) scale[r.stateRate] = 10.0;
@@ -102,7 +101,7 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
   if (jointsWithin(m, data_, health_.blowUpDeformation * m.chain.pitch))
     return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.rollerRadius, t, why);
   measureJoints(m, data_);  // some joint is opened too far: which, and by how much
-  return chainHealthy(m, health_, [&](int j) { return data_.joints[j].deformation; }, data_.contacts.data(),
+  return chainHealthy(m, health_, [&](int j) { return data_.joints.deformation[j]; }, data_.contacts.data(),
                       data_.nContacts, t, why);
 }
 

@@ -15,6 +15,9 @@ namespace {
 
 using json = nlohmann::json;
 
+// /2: the state laid out component by component (model.h); /1 held 6 components per link
+constexpr const char* kSchema = "chaindrive.state/2";
+
 std::string hex(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%a", v);
@@ -35,7 +38,7 @@ double fromHex(const std::string& path, const std::string& field, const json& j)
 
 void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s, const std::string& fidelity) {
   json j;
-  j["schema"] = "chaindrive.state/1";
+  j["schema"] = kSchema;
   j["drive"] = m.name;
   if (fidelity != "link") j["fidelity"] = fidelity;
   j["links"] = m.chain.links;
@@ -60,8 +63,12 @@ StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
   }
-  if (!j.is_object() || j.value("schema", "") != "chaindrive.state/1")
-    throw std::runtime_error(path + ": not a state file (schema must be \"chaindrive.state/1\")");
+  if (j.is_object() && j.value("schema", "") == "chaindrive.state/1")
+    throw std::runtime_error(path + ": a state file of the earlier state layout (schema \"chaindrive.state/1\", 6 "
+                             "components per link); this version reads \"" + std::string(kSchema) +
+                             "\" (the link components by component): save the state again");
+  if (!j.is_object() || j.value("schema", "") != kSchema)
+    throw std::runtime_error(path + ": not a state file (schema must be \"" + std::string(kSchema) + "\")");
   const std::string fileFidelity = j.value("fidelity", "link");
   if (fileFidelity != fidelity)
     throw std::runtime_error(path + ": a state of the " + fileFidelity + " fidelity; this run is of the " + fidelity +

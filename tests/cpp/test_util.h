@@ -72,10 +72,10 @@ inline std::vector<double> runningState(const Model& m, const InputSignal& in) {
   const double h = 2e-7;
   for (int k = 0; k < 2000; ++k) {  // 0.4 ms, symplectic Euler with small steps
     forwardCompliant(m, d, in, k * h, y.data(), f.data());
-    for (int i = 0; i < m.nStates; ++i)
-      if (m.nStates && (i < 6 * m.chain.links ? (i % 6 >= 3) : true)) y[i] += h * f[i];
-    for (int i = 0; i < 6 * m.chain.links; ++i)
-      if (i % 6 < 3) y[i] += h * y[i + 3];
+    // (the link velocities are the state's entries from 3 links on, model.h)
+    const int n3 = 3 * m.chain.links;
+    for (int i = n3; i < m.nStates; ++i) y[i] += h * f[i];
+    for (int i = 0; i < n3; ++i) y[i] += h * y[i + n3];
   }
   return y;
 }

@@ -26,8 +26,9 @@ def damped_drive(path, joint, contact):
 
 
 def rotor_angle_states(drive):
-    """{rotor name: index of its angle in the state vector}: the layout of src/assembly/assembly.cpp (6 per
-    link, then per rotor its angle and, if free, its rate; sprockets first, then pivoting guides)."""
+    """{rotor name: index of its angle in the state vector}: the layout of src/assembly/model.h (the 6 link
+    components, each over all links, then per rotor its angle and, if free, its rate; sprockets first, then
+    pivoting guides)."""
     idx = 6 * drive["chain"]["numberOfLinks"]
     out = {}
     for s in drive["sprockets"]:
@@ -38,6 +39,12 @@ def rotor_angle_states(drive):
             out[g["name"]] = idx
             idx += 2
     return out
+
+
+def link_state(drive, link, component):
+    """Index of a link's state component (0 x, 1 y, 2 gamma, 3 vx, 4 vy, 5 omega): component by component over
+    the links (src/assembly/model.h)."""
+    return component * drive["chain"]["numberOfLinks"] + link
 
 
 def perturbation_plan(drive, pairs):
@@ -54,7 +61,7 @@ def perturbation_plan(drive, pairs):
         else:
             link = (17 * k) % links
             coord = "xy"[k % 2]
-            plan.append((f"link {link} {coord}", 6 * link + "xy".index(coord)))
+            plan.append((f"link {link} {coord}", link_state(drive, link, "xy".index(coord))))
     return plan
 
 

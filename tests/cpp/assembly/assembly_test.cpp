@@ -19,8 +19,8 @@ TEST(Assembly, ChainClosesWithAllJointGapsBelowOneNanometre) {
   double worst = 0.0, length = 0.0;
   const int n = m.chain.links;
   for (int j = 0; j < n; ++j) {
-    const LinkKin a = linkKinematics(m.chain, &y[6 * j]);
-    const LinkKin b = linkKinematics(m.chain, &y[6 * ((j + 1) % n)]);
+    const LinkKin a = linkKinematics(m, y.data(), j);
+    const LinkKin b = linkKinematics(m, y.data(), (j + 1) % n);
     worst = std::max(worst, norm(a.front - b.rear));
     length += norm(a.front - a.rear);
   }

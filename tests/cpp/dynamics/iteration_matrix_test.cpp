@@ -20,15 +20,15 @@ Eigen::MatrixXd differenced(const Model& m, const InputSignal& in, std::vector<d
   Data d(m);
   Eigen::MatrixXd out(3 * n, 3 * n);
   for (int col = 0; col < 3 * n; ++col) {
-    double& x = y[6 * (col / 3) + offset + col % 3];
+    double& x = y[m.linkState(col / 3, offset + col % 3)];  // the ring's order: per link x, y, gamma
     const double x0 = x, eps = offset == 0 ? (col % 3 == 2 ? 1e-8 : 1e-9) : 1e-6;
     Eigen::VectorXd plus(3 * n);
     x = x0 + eps;
     generalizedForces(m, d, in, 0.0, y.data());
-    for (int r = 0; r < 3 * n; ++r) plus[r] = d.gen[r];
+    for (int r = 0; r < 3 * n; ++r) plus[r] = d.gen[m.linkGen(r / 3, r % 3)];
     x = x0 - eps;
     generalizedForces(m, d, in, 0.0, y.data());
-    for (int r = 0; r < 3 * n; ++r) out(r, col) = (plus[r] - d.gen[r]) / (2.0 * eps);
+    for (int r = 0; r < 3 * n; ++r) out(r, col) = (plus[r] - d.gen[m.linkGen(r / 3, r % 3)]) / (2.0 * eps);
     x = x0;
   }
   return out;

@@ -29,7 +29,7 @@ TEST(Jacobian, MatchesCentralDifferencesOfTheRightHandSide) {
   // compare column by column for a sample of columns: every state of a few links and all rotors
   std::vector<int> cols;
   for (int link : {0, 1, 37, 64, 119})
-    for (int k = 0; k < 6; ++k) cols.push_back(6 * link + k);
+    for (int k = 0; k < 6; ++k) cols.push_back(m.linkState(link, k));
   for (const auto& r : m.rotors) {
     cols.push_back(r.stateAngle);
     if (r.stateRate >= 0) cols.push_back(r.stateRate);
@@ -39,10 +39,8 @@ TEST(Jacobian, MatchesCentralDifferencesOfTheRightHandSide) {
   const auto& ri = jac.rowIndices();
   double worst = 0.0;
   for (int c : cols) {
-    const bool angleOrPos = (c < 6 * m.chain.links) ? (c % 6 < 3) : true;
-    const double h = c < 6 * m.chain.links ? (c % 6 < 2 ? 1e-9 : c % 6 == 2 ? 1e-8 : c % 6 < 5 ? 1e-6 : 1e-5)
-                                          : 1e-8;
-    (void)angleOrPos;
+    const int comp = c / m.chain.links;  // the link component of a link state (model.h)
+    const double h = c < 6 * m.chain.links ? (comp < 2 ? 1e-9 : comp == 2 ? 1e-8 : comp < 5 ? 1e-6 : 1e-5) : 1e-8;
     std::vector<double> yp(y), ym(y);
     yp[c] += h;
     ym[c] -= h;

@@ -84,7 +84,7 @@ TEST(StateFile, StateOfAnotherDriveIsRefused) {
 
 TEST(StateFile, CorruptFilesAreRefusedNamingTheProblem) {
   const std::string garbage = tempPath("garbage.json");
-  std::ofstream(garbage) << "{\"schema\": \"chaindrive.state/1\", \"y\": [";
+  std::ofstream(garbage) << "{\"schema\": \"chaindrive.state/2\", \"y\": [";
   EXPECT_NE(readError(garbage).find(garbage + ": not valid JSON"), std::string::npos) << readError(garbage);
 
   const std::string schema = editedFile("schema.json", [](json& j) { j["schema"] = "chaindrive.state/0"; });

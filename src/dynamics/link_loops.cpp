@@ -1,0 +1,182 @@
+#include "dynamics/link_loops.h"
+
+#include <cstring>
+
+#include "description/drive_description.h"
+#include "dynamics/joint_forces.h"
+#include "simd.h"
+#include "sincos.h"
+
+namespace chaindrive {
+
+namespace {
+
+// The loops for W lanes, over whole vectors of links and a last, partly filled one
+// (simd::forEachVector). Past the last link they read zeros or the arrays' zero padding and store
+// nothing, so the padding stays zero and a joint past the last one has no force.
+
+#define CHAINDRIVE_LANES_BODY [&](int i, auto lanes) __attribute__((always_inline))
+
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void kinematicsLanes(const Model& m, Data& d, const double* y) {
+  using V = typename simd::Lanes<W>::V;
+  const int n = m.chain.links;
+  LinkArrays& L = d.links;
+  const double halfPitch = 0.5 * m.chain.pitch;
+  const double *x = y, *yy = y + n, *gamma = y + 2 * n, *vx = y + 3 * n, *vy = y + 4 * n, *w = y + 5 * n;
+  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+    V sine, cosine;
+    sinCosLanes<W>(lanes.load(gamma + i), sine, cosine);
+    const V cx = lanes.load(x + i), cy = lanes.load(yy + i);
+    const V vcx = lanes.load(vx + i), vcy = lanes.load(vy + i), omega = lanes.load(w + i);
+    const V hx = halfPitch * cosine, hy = halfPitch * sine;  // centre -> front pin
+    const V vhx = -omega * hy, vhy = omega * hx;             // its velocity relative to the centre
+    lanes.store(&L.cx[i], cx);
+    lanes.store(&L.cy[i], cy);
+    lanes.store(&L.vx[i], vcx);
+    lanes.store(&L.vy[i], vcy);
+    lanes.store(&L.w[i], omega);
+    lanes.store(&L.ex[i], cosine);
+    lanes.store(&L.ey[i], sine);
+    lanes.store(&L.rearX[i], cx - hx);
+    lanes.store(&L.rearY[i], cy - hy);
+    lanes.store(&L.frontX[i], cx + hx);
+    lanes.store(&L.frontY[i], cy + hy);
+    lanes.store(&L.vRearX[i], vcx - vhx);
+    lanes.store(&L.vRearY[i], vcy - vhy);
+    lanes.store(&L.vFrontX[i], vcx + vhx);
+    lanes.store(&L.vFrontY[i], vcy + vhy);
+  });
+  // the last joint joins the last link's front pin to the first link's rear pin
+  L.rearX[n] = L.rearX[0];
+  L.rearY[n] = L.rearY[0];
+  L.vRearX[n] = L.vRearX[0];
+  L.vRearY[n] = L.vRearY[0];
+}
+
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
+  using V = typename simd::Lanes<W>::V;
+  using Mask = typename simd::Lanes<W>::Mask;
+  using simd::load;
+  const int n = m.chain.links;
+  const LinkArrays& L = d.links;
+  double *fx = d.joints.forceX(), *fy = d.joints.forceY();
+  // joint i: link i's front pin against link i + 1's rear pin
+  V partial[4 / W] = {};  // the power in four partial sums: link i in sum i mod 4
+  V widest = {};
+  Mask notANumber = {};
+  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+    const V dx = load<V>(&L.frontX[i]) - load<V>(&L.rearX[i + 1]);
+    const V dy = load<V>(&L.frontY[i]) - load<V>(&L.rearY[i + 1]);
+    const V dvx = load<V>(&L.vFrontX[i]) - load<V>(&L.vRearX[i + 1]);
+    const V dvy = load<V>(&L.vFrontY[i]) - load<V>(&L.vRearY[i + 1]);
+    V jfx, jfy, power;
+    journalBearing(m.chain, dx, dy, dvx, dvy, jfx, jfy, power);
+    lanes.store(fx + i, jfx);
+    lanes.store(fy + i, jfy);
+    partial[(i / W) % (4 / W)] += power;
+    const V opening2 = dx * dx + dy * dy;
+    widest = simd::select(opening2 > widest, opening2, widest);
+    notANumber |= opening2 != opening2;
+  });
+  fx[-1] = fx[n - 1];  // link 0's rear joint is the last one
+  fy[-1] = fy[n - 1];
+  // each link: its front joint's force on its front pin, its rear joint's opposite force on its
+  // rear pin, and their torques about its centre
+  double *gx = d.gen.data(), *gy = gx + n, *gGamma = gx + 2 * n;
+  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+    const V fFrontX = load<V>(fx + i), fFrontY = load<V>(fy + i);
+    const V fRearX = load<V>(fx + i - 1), fRearY = load<V>(fy + i - 1);
+    const V cx = load<V>(&L.cx[i]), cy = load<V>(&L.cy[i]);
+    const V ux = load<V>(&L.frontX[i]) - cx, uy = load<V>(&L.frontY[i]) - cy;
+    const V rx = load<V>(&L.rearX[i]) - cx, ry = load<V>(&L.rearY[i]) - cy;
+    lanes.store(gx + i, fFrontX - fRearX);
+    lanes.store(gy + i, fFrontY - fRearY);
+    lanes.store(gGamma + i, (ux * fFrontY - uy * fFrontX) - (rx * fRearY - ry * fRearX));
+  });
+  double sums[4], largest = 0.0;
+  bool nan = false;
+  for (int h = 0; h < 4 / W; ++h)
+    for (int l = 0; l < W; ++l) sums[h * W + l] = partial[h][l];
+  for (int l = 0; l < W; ++l) {
+    largest = widest[l] > largest ? widest[l] : largest;
+    nan |= notANumber[l] != 0;
+  }
+  d.jointOpening2 = nan ? std::nan("") : largest;
+  return simd::reduce4(sums);
+}
+
+// The reach tests as those of one link at a time: within unless the squared distance exceeds the
+// squared reach (so a NaN position counts as near, and its query reports it).
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void nearLanes(const Model& m, Data& d) {
+  using V = typename simd::Lanes<W>::V;
+  using Mask = typename simd::Lanes<W>::Mask;
+  using simd::load;
+  using simd::splat;
+  const int n = m.chain.links;
+  const LinkArrays& L = d.links;
+  const int nSprockets = static_cast<int>(m.sprockets.size()), nGuides = static_cast<int>(m.guides.size());
+  // every element's circle and bits, splat once
+  struct Circle {
+    V x, y, radius2;
+    Mask bit, frontBit;
+  };
+  Circle sprockets[kMaxSprockets], guides[kMaxGuides];
+  for (int s = 0; s < nSprockets; ++s)
+    sprockets[s] = Circle{splat<V>(m.sprockets[s].center.x), splat<V>(m.sprockets[s].center.y),
+                          splat<V>(m.sprockets[s].reach2), Mask{} + (1LL << s), Mask{} + (1LL << (kMaxSprockets + s))};
+  for (int g = 0; g < nGuides; ++g)
+    guides[g] = Circle{splat<V>(d.guideBoundX[g]), splat<V>(d.guideBoundY[g]), splat<V>(d.guideReach2[g]),
+                       Mask{} + (1LL << g), Mask{}};
+  for (int i = 0; i < n; i += W) {
+    const V rearX = load<V>(&L.rearX[i]), rearY = load<V>(&L.rearY[i]);
+    const V frontX = load<V>(&L.frontX[i]), frontY = load<V>(&L.frontY[i]);
+    Mask nearSprockets = {};
+    for (int s = 0; s < nSprockets; ++s) {
+      const Circle& c = sprockets[s];
+      const V ax = rearX - c.x, ay = rearY - c.y, bx = frontX - c.x, by = frontY - c.y;
+      nearSprockets |= (~(ax * ax + ay * ay > c.radius2) & c.bit) | (~(bx * bx + by * by > c.radius2) & c.frontBit);
+    }
+    const V cx = load<V>(&L.cx[i]), cy = load<V>(&L.cy[i]);
+    Mask nearGuides = {};
+    for (int g = 0; g < nGuides; ++g) {
+      const V dx = cx - guides[g].x, dy = cy - guides[g].y;
+      nearGuides |= ~(dx * dx + dy * dy > guides[g].radius2) & guides[g].bit;
+    }
+    std::memcpy(&d.nearSprockets[i], &nearSprockets, sizeof nearSprockets);  // (the padding takes the rest)
+    std::memcpy(&d.nearGuides[i], &nearGuides, sizeof nearGuides);
+  }
+}
+
+__attribute__((target("avx2"))) void kinematicsAvx2(const Model& m, Data& d, const double* y) {
+  kinematicsLanes<4>(m, d, y);
+}
+void kinematicsSse2(const Model& m, Data& d, const double* y) { kinematicsLanes<2>(m, d, y); }
+
+__attribute__((target("avx2"))) double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
+double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
+
+__attribute__((target("avx2"))) void nearAvx2(const Model& m, Data& d) { nearLanes<4>(m, d); }
+void nearSse2(const Model& m, Data& d) { nearLanes<2>(m, d); }
+
+}  // namespace
+
+int supportedVectorLanes() { return __builtin_cpu_supports("avx2") ? 4 : 2; }
+
+void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
+  if (d.vectorLanes == 4) kinematicsAvx2(m, d, y);
+  else kinematicsSse2(m, d, y);
+}
+
+double jointForcesLoop(const Model& m, Data& d) {
+  return d.vectorLanes == 4 ? jointsAvx2(m, d) : jointsSse2(m, d);
+}
+
+void nearElementsLoop(const Model& m, Data& d) {
+  if (d.vectorLanes == 4) nearAvx2(m, d);
+  else nearSse2(m, d);
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,132 @@
+// Vectors of doubles for the per-link loops of the dynamics (GCC's and Clang's vector
+// extensions): W lanes, each lane computed with the same IEEE operations in the same order as a
+// scalar double, so that a loop gives the same bits with 1, 2 (SSE2) or 4 (AVX2) lanes. What keeps
+// it so: no fused multiply-add (the library is built with -ffp-contract=off and the AVX2 loops
+// are compiled without FMA), no reassociation, and sums across lanes always formed in the same
+// order (reduce4). The laws written once for a double and for a vector (the joint law, the sines
+// and cosines) use the overloads below, which exist for both.
+#pragma once
+
+#include <cmath>
+#include <cstring>
+
+#define CHAINDRIVE_ALWAYS_INLINE inline __attribute__((always_inline))
+
+namespace chaindrive::simd {
+
+/// The vector types of W lanes: doubles, the masks comparisons give, and 32-bit integers.
+template <int W>
+struct Lanes;
+template <>
+struct Lanes<2> {
+  typedef double V __attribute__((vector_size(16)));
+  typedef long long Mask __attribute__((vector_size(16)));
+  typedef int Int __attribute__((vector_size(8)));
+};
+template <>
+struct Lanes<4> {
+  typedef double V __attribute__((vector_size(32)));
+  typedef long long Mask __attribute__((vector_size(32)));
+  typedef int Int __attribute__((vector_size(16)));
+};
+
+template <class V>
+constexpr int lanesOf() {
+  return static_cast<int>(sizeof(V) / sizeof(double));
+}
+
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V load(const double* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE void store(double* p, V v) {
+  std::memcpy(p, &v, sizeof v);
+}
+/// A loop's access to arrays of doubles, one vector at i at a time: all its lanes ...
+template <class V>
+struct AllLanes {
+  CHAINDRIVE_ALWAYS_INLINE V load(const double* p) const { return simd::load<V>(p); }
+  CHAINDRIVE_ALWAYS_INLINE void store(double* p, V v) const { simd::store(p, v); }
+};
+/// ... or the first `count` (its last, partly filled vector): zeros read in the others, nothing
+/// read or stored past them.
+template <class V>
+struct FirstLanes {
+  int count;
+  CHAINDRIVE_ALWAYS_INLINE V load(const double* p) const {
+    V v = {};
+    for (int l = 0; l < count; ++l) v[l] = p[l];
+    return v;
+  }
+  CHAINDRIVE_ALWAYS_INLINE void store(double* p, V v) const {
+    for (int l = 0; l < count; ++l) p[l] = v[l];
+  }
+};
+
+/// Calls body(i, lanes) for i = 0, W, 2 W, ... below n: lanes is AllLanes for the whole vectors,
+/// FirstLanes for a last, partly filled one (the body is compiled for each: the whole vectors'
+/// loop has no test per lane). The body must be always inlined.
+template <class V, class Body>
+CHAINDRIVE_ALWAYS_INLINE void forEachVector(int n, Body body) {
+  constexpr int W = lanesOf<V>();
+  int i = 0;
+  for (; i + W <= n; i += W) body(i, AllLanes<V>{});
+  if (i < n) body(i, FirstLanes<V>{n - i});
+}
+
+/// Every lane x.
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V splat(double x) {
+  V v;
+  for (int l = 0; l < lanesOf<V>(); ++l) v[l] = x;
+  return v;
+}
+
+/// a where the mask is set, b elsewhere (the scalar overload: a where m is true).
+template <class V, class M>
+CHAINDRIVE_ALWAYS_INLINE V select(M m, V a, V b) {
+  return (V)(((M)a & m) | ((M)b & ~m));
+}
+CHAINDRIVE_ALWAYS_INLINE double select(bool m, double a, double b) { return m ? a : b; }
+
+/// a with its sign flipped where the mask is set.
+template <class V, class M>
+CHAINDRIVE_ALWAYS_INLINE V flipSign(M m, V a) {
+  return (V)((M)a ^ (m & (M)splat<V>(-0.0)));
+}
+
+/// |v| lane by lane (the sign bit cleared; the scalar overload: std::fabs).
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V abs(V v) {
+  typedef long long Bits __attribute__((vector_size(sizeof(V))));
+  return (V)((Bits)v & ~(Bits)splat<V>(-0.0));
+}
+CHAINDRIVE_ALWAYS_INLINE double abs(double v) { return std::fabs(v); }
+
+/// True when every lane of the mask is set (the lanes ANDed as 64-bit words, no lane extracted
+/// one at a time).
+template <class M>
+CHAINDRIVE_ALWAYS_INLINE bool allSet(M m) {
+  long long lanes[sizeof(M) / sizeof(long long)];
+  std::memcpy(lanes, &m, sizeof m);
+  long long all = -1;
+  for (long long lane : lanes) all &= lane;
+  return all == -1;
+}
+
+/// Square root lane by lane (correctly rounded: the same bits as std::sqrt of each lane).
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V sqrt(V v) {
+  for (int l = 0; l < lanesOf<V>(); ++l) v[l] = std::sqrt(v[l]);
+  return v;
+}
+CHAINDRIVE_ALWAYS_INLINE double sqrt(double v) { return std::sqrt(v); }
+
+/// Sum of four partial sums in one fixed order: sums over the links are kept in four partial
+/// sums (link i in sum i mod 4) whatever the vector width, then combined here.
+CHAINDRIVE_ALWAYS_INLINE double reduce4(const double s[4]) { return ((s[0] + s[1]) + s[2]) + s[3]; }
+
+}  // namespace chaindrive::simd
