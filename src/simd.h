@@ -20,13 +20,13 @@ struct Lanes;
 template <>
 struct Lanes<2> {
   typedef double V __attribute__((vector_size(16)));
-  typedef long long Mask __attribute__((vector_size(16)));
+  typedef decltype(V{} < V{}) Mask;  // (64-bit integers, set lanes -1)
   typedef int Int __attribute__((vector_size(8)));
 };
 template <>
 struct Lanes<4> {
   typedef double V __attribute__((vector_size(32)));
-  typedef long long Mask __attribute__((vector_size(32)));
+  typedef decltype(V{} < V{}) Mask;
   typedef int Int __attribute__((vector_size(16)));
 };
 
@@ -106,15 +106,23 @@ CHAINDRIVE_ALWAYS_INLINE V abs(V v) {
 }
 CHAINDRIVE_ALWAYS_INLINE double abs(double v) { return std::fabs(v); }
 
-/// True when every lane of the mask is set (the lanes ANDed as 64-bit words, no lane extracted
-/// one at a time).
+/// Every lane of the mask combined with every other by op (& or |), by swapping halves: no lane
+/// is extracted one at a time.
+template <class M, class Op>
+CHAINDRIVE_ALWAYS_INLINE M foldLanes(M m, Op op) {
+  if constexpr (sizeof(M) == 32) m = op(m, __builtin_shuffle(m, M{2, 3, 0, 1}));
+  if constexpr (sizeof(M) == 32) return op(m, __builtin_shuffle(m, M{1, 0, 3, 2}));
+  else return op(m, __builtin_shuffle(m, M{1, 0}));
+}
+/// True when every lane of the mask is set.
 template <class M>
 CHAINDRIVE_ALWAYS_INLINE bool allSet(M m) {
-  long long lanes[sizeof(M) / sizeof(long long)];
-  std::memcpy(lanes, &m, sizeof m);
-  long long all = -1;
-  for (long long lane : lanes) all &= lane;
-  return all == -1;
+  return foldLanes(m, [](M a, M b) __attribute__((always_inline)) { return a & b; })[0] != 0;
+}
+/// True when some lane of the mask is set.
+template <class M>
+CHAINDRIVE_ALWAYS_INLINE bool anySet(M m) {
+  return foldLanes(m, [](M a, M b) __attribute__((always_inline)) { return a | b; })[0] != 0;
 }
 
 /// Square root lane by lane (correctly rounded: the same bits as std::sqrt of each lane).

@@ -3,8 +3,12 @@
 // function of the sliding speed (the paper's remark on the CVT model).
 #pragma once
 
+#include <cmath>
+#include <type_traits>
+
 #include "dynamics/data.h"
 #include "assembly/model.h"
+#include "simd.h"
 
 namespace chaindrive {
 
@@ -12,6 +16,36 @@ struct CompliantResult {
   double power = 0.0;   // dissipated power (normal damping and friction) [W]
   double energy = 0.0;  // elastic energy stored in the contact [J]
 };
+
+/// The elastic part of the normal force at penetration delta (T = double or a vector, simd.h).
+template <class T>
+CHAINDRIVE_ALWAYS_INLINE T springForce(const ContactLaw& law, T delta) {
+  if (law.exponent == 1.0) return law.stiffness * delta;
+  if constexpr (std::is_same_v<T, double>) {
+    return law.stiffness * std::pow(delta, law.exponent);
+  } else {
+    for (int l = 0; l < simd::lanesOf<T>(); ++l) delta[l] = law.stiffness * std::pow(delta[l], law.exponent);
+    return delta;
+  }
+}
+
+/// The law for a closed contact (gap < 0) of one contact (T = double) or a vector of them: the
+/// normal and friction forces on the chain from the gap and the normal and tangential relative
+/// velocities, and the power dissipated (one definition: the contact search's rollers several at a
+/// time give the bits of one at a time).
+template <class T>
+CHAINDRIVE_ALWAYS_INLINE void contactLaw(const ContactLaw& law, double vReg, T gap, T vN, T vT, T& fN, T& fT,
+                                         T& power) {
+  const T delta = -gap;      // penetration
+  const T deltaRate = -vN;   // penetration rate
+  const T spring = springForce(law, delta);
+  T f = law.huntCrossley ? spring * (1.0 + 1.5 * law.dampingFactor * deltaRate) : spring + law.damping * deltaRate;
+  f = simd::select(f < 0.0, T{}, f);
+  // regularised Coulomb friction: -mu fN v / sqrt(v^2 + vReg^2)
+  fT = -law.friction * f * vT / simd::sqrt(vT * vT + vReg * vReg);
+  fN = f;
+  power = (f - spring) * deltaRate - fT * vT;
+}
 
 /// Sets c.fN and c.fT from the contact kinematics.
 CompliantResult compliantContactForce(const ContactLaw& law, double vReg, ContactPoint& c);
@@ -24,11 +58,62 @@ struct CompliantSlopes {
 };
 CompliantSlopes compliantContactSlopes(const ContactLaw& law, double vReg, const ContactPoint& c);
 
-/// Adds the generalized forces of contact c (forces c.fN, c.fT) to the link and rotor entries.
-void addContactGen(const Model& m, const ContactPoint& c, double* gen);
+/// The two damping slopes of compliantContactSlopes alone (byPenetrationRate, bySliding) for a
+/// closed contact (gap < 0, fN > 0), for one contact (T = double) or a vector of them.
+template <class T>
+CHAINDRIVE_ALWAYS_INLINE void dampingSlopes(const ContactLaw& law, double vReg, T gap, T fN, T vT, T& byPenetrationRate,
+                                            T& bySliding) {
+  byPenetrationRate = law.huntCrossley ? 1.5 * law.dampingFactor * springForce(law, -gap) : T{} + law.damping;
+  const double vReg2 = vReg * vReg;
+  const T slide2 = vT * vT + vReg2;
+  bySliding = law.friction * fN * vReg2 / (slide2 * simd::sqrt(slide2));
+}
 
-/// Evaluates the law for d.contacts[0..nContacts) and accumulates generalized forces; returns
-/// the dissipated power.
-double evaluateCompliantContacts(const Model& m, Data& d);
+/// What a closed contact's damping (dampingSlopes at the contact point) adds to its link's damping
+/// rates along x, y and gamma [1/s] (the diagonal of the implicit-damping schemes, dynamics/
+/// iteration_matrix.h): for one contact or a vector of them; zero where fN is not positive.
+template <class T>
+CHAINDRIVE_ALWAYS_INLINE void contactDampingRates(const Model& m, const ContactLaw& law, T gap, T fN, T vT, T nx, T ny,
+                                                  T tx, T ty, T rx, T ry, T& rateX, T& rateY, T& rateGamma) {
+  T kn, kt;
+  dampingSlopes(law, m.frictionRegularization, gap, fN, vT, kn, kt);
+  const auto closed = fN > 0.0;
+  kn = simd::select(closed, kn, T{});
+  kt = simd::select(closed, kt, T{});
+  const T rn = rx * ny - ry * nx, rt = rx * ty - ry * tx;  // the lever arms about the link's centre
+  const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
+  rateX = (kn * nx * nx + kt * tx * tx) * invM;
+  rateY = (kn * ny * ny + kt * ty * ty) * invM;
+  rateGamma = (kn * rn * rn + kt * rt * rt) * invJ;
+}
+
+/// Adds contact c's damping rates to its link's entries of d.contactDamping.
+inline void addContactDamping(const Model& m, const ContactLaw& law, const ContactPoint& c, Data& d) {
+  double x, y, gamma;
+  contactDampingRates(m, law, c.gap, c.fN, c.vT, c.normal.x, c.normal.y, c.tangent.x, c.tangent.y, c.rLink.x,
+                      c.rLink.y, x, y, gamma);
+  d.contactDamping[m.linkGen(c.link, Model::kX)] += x;
+  d.contactDamping[m.linkGen(c.link, Model::kY)] += y;
+  d.contactDamping[m.linkGen(c.link, Model::kGamma)] += gamma;
+}
+
+/// Adds the generalized forces of contact c (forces c.fN, c.fT) to the link and rotor entries.
+inline void addContactGen(const Model& m, const ContactPoint& c, double* gen) {
+  const Vec2 f = c.fN * c.normal + c.fT * c.tangent;
+  gen[m.linkGen(c.link, Model::kX)] += f.x;
+  gen[m.linkGen(c.link, Model::kY)] += f.y;
+  gen[m.linkGen(c.link, Model::kGamma)] += cross(c.rLink, f);
+  if (c.rotor >= 0) gen[m.rotorGen(c.rotor)] -= cross(c.rRotor, f);
+}
+
+/// The law's forces on contact c (compliantContactForce) added to d.gen, its damping to
+/// d.contactDamping; returns the dissipated power.
+inline double addCompliantForce(const Model& m, const ContactLaw& law, ContactPoint& c, Data& d) {
+  const double power = compliantContactForce(law, m.frictionRegularization, c).power;
+  addContactGen(m, c, d.gen.data());
+  addContactDamping(m, law, c, d);
+  return power;
+}
+
 
 }  // namespace chaindrive

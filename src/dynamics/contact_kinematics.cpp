@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dynamics/contact_compliant.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/link_loops.h"
 #include "sincos.h"
@@ -76,22 +77,20 @@ int searchGap(const SprocketModel& s, Vec2 body, int guess) {
 }  // namespace roller
 
 bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double /*angle*/,
-                              double cosA, double sinA, double rate, double margin, ContactPoint& cp, RollerHint* hint) {
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp) {
   const SprocketModel& s = m.sprockets[sprocket];
   const Vec2 p = end == 0 ? lk.rear : lk.front, v = end == 0 ? lk.vRear : lk.vFront;
   const Vec2 rel = p - s.center;
   if (norm2(rel) > s.reach2) return false;
   Vec2 body;
   roller::toSprocketFrame(rel.x, rel.y, cosA, sinA, body.x, body.y);
-  if (hint && roller::stillClear(*hint, body, margin)) return false;
   // the roller centre in the frame of its tooth gap, its closest point on the outline there
-  const int k = roller::gapOf(s, body, hint ? hint->gap : -1);
+  const int k = roller::gapOf(s, body, -1);
   const Vec2 gd = s.gapDirs[k];
   Vec2 local;
   roller::toGapFrame(body.x, body.y, gd.x, gd.y, local.x, local.y);
   const ProfileHit hit = s.gap.closest(local);
   const double gap = hit.distance - m.chain.rollerRadius;
-  if (hint) *hint = RollerHint{k, body, gap >= margin ? gap : -1.0};
   if (gap >= margin) return false;
   const roller::World<double> w = roller::toWorld(s.center, cosA, sinA, rate, gd.x, gd.y, hit.point.x, hit.point.y,
                                                   hit.normal.x, hit.normal.y, p.x, p.y, v.x, v.y, lk.c.x, lk.c.y);
@@ -156,24 +155,10 @@ bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace&
 
 namespace {
 
-// The rollers near a sprocket (d.nearSprockets) against it, sprocket by sprocket, each in the
-// order of the rollers' links and ends, several rollers at a time (contact_lanes.h). Rollers sit on
-// the inner links (even index), one at each end.
-int detectRollerContacts(const Model& m, Data& d, double margin, int count) {
-  const int n = m.chain.links, nSprockets = static_cast<int>(m.sprockets.size());
-  std::fill(d.rollerCandidateCount.begin(), d.rollerCandidateCount.end(), 0);
-  for (int i = 0; i < n; i += 2) {
-    for (auto near = static_cast<std::uint32_t>(d.nearSprockets[i]); near != 0; near &= near - 1) {
-      const int bit = __builtin_ctz(near), s = bit % kMaxSprockets, end = bit / kMaxSprockets;
-      d.rollerCandidates[s * n + d.rollerCandidateCount[s]++] = 2 * i + end;  // (in increasing order)
-    }
-  }
-  for (int s = 0; s < nSprockets; ++s) count = rollerContactsLoop(m, d, s, margin, count);
-  return count;
-}
-
-// The links near a guide (d.nearGuides) against its faces, in the order of links, guides and faces.
-int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink, int count) {
+// The links near a guide against its faces, in the order of guides, faces and links: arc faces
+// several links at a time (contact_lanes.h), line faces one at a time.
+int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink, bool forces, int count,
+                        double& power) {
   const int cap = static_cast<int>(d.contacts.size());
   std::size_t firstFace = 0;  // of the guide, in d.placedFaces
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
@@ -181,23 +166,24 @@ int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink
     const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
     const double sinA = g.rotor >= 0 ? d.rotorSin[g.rotor] : 0.0;
     const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
-    d.plateCandidateCount = 0;
-    for (int i = 0; i < m.chain.links; ++i)
-      if (d.nearGuides[i] >> gi & 1u) d.plateCandidates[d.plateCandidateCount++] = i;
+    const Vec2 bc{d.guideBoundX[gi], d.guideBoundY[gi]};
+    const double reach2 = d.guideReach2[gi];
     for (std::size_t f = 0; f < g.faces.size(); ++f) {
       PlacedFace& pf = d.placedFaces[firstFace + f];
       pf = placeFace(g.faces[f], g.pivot, cosA, sinA);
-      if (g.faces[f].type != GuideFace::Type::Line) {  // arcs: several links at a time
-        count = plateContactsLoop(m, d, static_cast<int>(gi), static_cast<int>(f), pf, margin, reachLink, count);
+      if (g.faces[f].type != GuideFace::Type::Line) {
+        count = plateContactsLoop(m, d, static_cast<int>(gi), static_cast<int>(f), pf, margin, reachLink, forces,
+                                  count, power);
         continue;
       }
-      for (int k = 0; k < d.plateCandidateCount && count < cap; ++k) {
-        const LinkKin lk = d.links[d.plateCandidates[k]];
-        if (!faceNear(pf, lk.c, reachLink)) continue;
+      for (int i = 0; i < m.chain.links && count < cap; ++i) {
+        const LinkKin lk = d.links[i];
+        if (norm2(lk.c - bc) > reach2 || !faceNear(pf, lk.c, reachLink)) continue;
         const FaceHit hit = plateEdgeHit(m, pf, lk, facingSide(pf, lk.c, lk.e));
-        if (hit.valid && hit.gap < margin)
-          setPlateContact(m, static_cast<int>(gi), static_cast<int>(f), d.plateCandidates[k], lk, hit, rate,
-                          d.contacts[count++]);
+        if (!hit.valid || hit.gap >= margin) continue;
+        ContactPoint& c = d.contacts[count++];
+        setPlateContact(m, static_cast<int>(gi), static_cast<int>(f), i, lk, hit, rate, c);
+        if (forces) power += addCompliantForce(m, m.plateGuide, c, d);
       }
     }
     firstFace += g.faces.size();
@@ -207,9 +193,9 @@ int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink
 
 }  // namespace
 
-void detectContacts(const Model& m, Data& d, double margin) {
-  // a plate edge lies within reachLink of its link's centre: a link is near a guide when its
-  // centre lies within the guide's bounding circle grown by twice that
+double detectContacts(const Model& m, Data& d, double margin, bool forces) {
+  // a link is near a guide when its centre lies within the guide's bounding circle grown by twice
+  // the reach of a plate edge from its link's centre
   const double reachLink = std::hypot(0.5 * m.chain.pitch, m.chain.plateHalfHeight) + std::fabs(margin);
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
@@ -221,9 +207,15 @@ void detectContacts(const Model& m, Data& d, double margin) {
     d.guideBoundY[gi] = bc.y;
     d.guideReach2[gi] = reach * reach;
   }
-  nearElementsLoop(m, d);
-  const int rollers = detectRollerContacts(m, d, margin, 0);
-  d.nContacts = detectPlateContacts(m, d, margin, reachLink, rollers);
+  updateSearchWindows(m, d, margin);
+  // the rollers sprocket by sprocket, then the plates guide by guide, several at a time
+  int count = 0;
+  double power = 0.0;
+  if (forces) std::fill(d.contactDamping.begin(), d.contactDamping.end(), 0.0);
+  for (std::size_t s = 0; s < m.sprockets.size(); ++s)
+    count = rollerContactsLoop(m, d, static_cast<int>(s), margin, forces, count, power);
+  d.nContacts = detectPlateContacts(m, d, margin, reachLink, forces, count, power);
+  return power;
 }
 
 bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, Failure& why) {

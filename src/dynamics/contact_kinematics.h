@@ -20,11 +20,8 @@ void evaluateKinematics(const Model& m, Data& d, const double* y);
 
 /// Roller of link `link` at end (0 rear, 1 front) against a sprocket turned to `angle` (with
 /// cos/sin given) at angular velocity `rate`. True (and cp filled) when the gap is below margin.
-/// `hint` (optional, in and out): what the last call found for this roller and sprocket (data.h),
-/// which makes this one cheap; the result does not depend on it.
 bool rollerSprocketKinematics(const Model& m, int sprocket, int link, int end, const LinkKin& lk, double angle,
-                              double cosA, double sinA, double rate, double margin, ContactPoint& cp,
-                              RollerHint* hint = nullptr);
+                              double cosA, double sinA, double rate, double margin, ContactPoint& cp);
 
 /// Plate edge of link `link` against face `face` of a guide turned by `angle` about its pivot.
 bool plateGuideKinematics(const Model& m, int guide, int face, int link, const LinkKin& lk, double cosA, double sinA,
@@ -108,13 +105,6 @@ inline int gapOf(const SprocketModel& s, Vec2 body, int guess) {
 // it skips a query the query would have found no contact either.
 constexpr double kClearanceReserve = 1e-9;  // [m]
 
-/// True when a roller now at `body` in the sprocket's frame is still clear of its outline by the
-/// last query's bound (hint), so that a query would find no contact.
-inline bool stillClear(const RollerHint& hint, Vec2 body, double margin) {
-  const double free = hint.clearance - margin - kClearanceReserve;
-  return free > 0.0 && norm2(body - hint.body) < free * free;
-}
-
 /// Fills cp with a roller contact: gap and the kinematics of lane l of w (arrays of lanes).
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE void setContact(ContactPoint& cp, int link, int end, int sprocket, int rotor, double gap,
@@ -149,8 +139,10 @@ void setPlateContact(const Model& m, int guide, int face, int link, const LinkKi
 bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t, Failure& why);
 
 /// Finds every contact with gap below margin into d.contacts[0 .. d.nContacts). Fixed order:
-/// rollers by sprocket, link and end; then plates by guide, face and link.
-void detectContacts(const Model& m, Data& d, double margin);
+/// rollers by sprocket, link and end; then plates by guide, face and link. With `forces` (the
+/// compliant contacts, margin 0), also their forces by the compliant law (c.fN, c.fT; one pass,
+/// contact_compliant.h), added to d.gen in that order; returns their dissipated power (0 without).
+double detectContacts(const Model& m, Data& d, double margin, bool forces = false);
 
 /// Column of W for direction `dir` (normal or tangent) of contact c: the link entries
 /// (d/dq of the relative velocity along dir for x, y, gamma) and the rotor entry.

@@ -1,7 +1,7 @@
-// The contact search's queries several at a time (simd.h): the rollers near one sprocket and the
-// links near one guide's arc face in vectors of 4 lanes (AVX2) or 2 (SSE2), with the formulas of
-// one at a time (contact_kinematics.h, namespace roller; geometry.h, namespace arcface), so with
-// the same bits.
+// The contact search over the rollers and links in vectors of 4 lanes (AVX2) or 2 (SSE2), the
+// coarse tests (a sprocket's reach, a guide's bounding circle) as lane masks, the queries with the
+// formulas of one roller or link at a time (contact_kinematics.h, namespace roller; geometry.h,
+// namespace arcface), so with the same bits.
 #pragma once
 
 #include "assembly/model.h"
@@ -9,17 +9,26 @@
 
 namespace chaindrive {
 
-/// The rollers d.rollerCandidates of sprocket `sprocket` against it: their contacts with gap below
-/// margin appended to d.contacts from index `count` in the candidates' order (as far as d.contacts
-/// holds them); returns the new count. Reads and updates d.rollerHints as the query of one roller
-/// does.
-int rollerContactsLoop(const Model& m, Data& d, int sprocket, double margin, int count);
+/// The search windows (data.h) for this evaluation: kept while nothing has moved further than their
+/// band since the last scan, else scanned again; d.guideBoundX, guideBoundY, guideReach2 hold the
+/// guides' circles of this evaluation (grown by the reach of `margin`).
+void updateSearchWindows(const Model& m, Data& d, double margin);
 
-/// The links d.plateCandidates (those near guide `guide`) against its arc face `face` (convex or
-/// concave), placed at the guide's angle (pf): their contacts with gap below margin appended to
-/// d.contacts from index `count` in the candidates' order; returns the new count. `reach`: a
-/// plate edge's farthest point from its link's centre (and the margin), faceNear's reach.
+/// The rollers within sprocket `sprocket`'s reach against it: their contacts with gap below margin
+/// appended to d.contacts from index `count` in the order of their pins (as far as d.contacts
+/// holds them); returns the new count. Reads and updates d.rollerHints: a roller still clear of
+/// the outline by the last query's clearance is not queried again (roller::kClearanceReserve).
+/// With `forces`, their forces by the compliant law too (contact_compliant.h), added to d.gen in
+/// that order, their dissipated power to `power`.
+int rollerContactsLoop(const Model& m, Data& d, int sprocket, double margin, bool forces, int count, double& power);
+
+/// The links within guide `guide`'s bounding circle (d.guideBoundX, guideBoundY, guideReach2) and
+/// near its arc face `face` (convex or concave), placed at the guide's angle (pf), against that
+/// face: their contacts with gap below margin appended to d.contacts from index `count` in the
+/// order of the links; returns the new count. `reach`: a plate edge's farthest point from its
+/// link's centre (and the margin), faceNear's reach.
+/// `forces`, `power`: as for the rollers.
 int plateContactsLoop(const Model& m, Data& d, int guide, int face, const PlacedFace& pf, double margin, double reach,
-                      int count);
+                      bool forces, int count, double& power);
 
 }  // namespace chaindrive

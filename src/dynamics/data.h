@@ -96,12 +96,40 @@ struct JointArrays {
   std::vector<double> fx_, fy_;
 };
 
-/// What the last query of a roller against a sprocket found, to make the next one cheap; the
-/// results never depend on it (contact_kinematics.cpp).
-struct RollerHint {
-  int gap = -1;             // the tooth gap of its sector (the search's first guess; -1: none)
-  Vec2 body;                // its centre in the sprocket's frame ...
-  double clearance = -1.0;  // ... where its gap was this [m] and it touched nothing (< 0: none)
+/// What the last query of each roller against each sprocket found, to make the next one cheap
+/// (contact_lanes.cpp); the results never depend on it. One array per quantity, sprocket by
+/// sprocket over the pins (padded as the link arrays).
+struct RollerHints {
+  RollerHints(int sprockets, int pins);
+  int index(int sprocket, int pin) const { return sprocket * stride + pin; }
+  int stride = 0;
+  std::vector<int> gap;            // the tooth gap of its sector (the search's first guess; -1: none)
+  std::vector<double> bodyX, bodyY;  // its centre in the sprocket's frame ...
+  std::vector<double> clearance;   // ... where its gap was this [m] and it touched nothing (< 0: none)
+};
+
+/// The contact search's windows, carried from one evaluation to the next: at the last full scan,
+/// which blocks of kBlock rollers (pins) lay within a sprocket's reach grown by kBand, which blocks
+/// of links had their centre within a guide's bounding circle grown by kBand, and where every
+/// link (centre and axis) and guide circle was. While nothing has moved by more than kBand since
+/// (a pin, or a link centre and its guide's circle together), no roller or link outside its
+/// element's window can be within the element's reach: the search visits the windows only, and
+/// scans again when something has moved further (contact_lanes.cpp). Its results do not depend
+/// on the windows.
+struct SearchWindows {
+  static constexpr int kBlock = 4;         // rollers or links per block
+  static constexpr double kBand = 2e-3;    // [m]
+  SearchWindows(int links, int sprockets, int guides);
+  int blocks = 0, words = 0;               // blocks over the links, 64-bit words of a window
+  std::vector<double> centerX, centerY, axisX, axisY;  // (links + padding) at the last scan
+  std::vector<double> boundX, boundY;      // (guides) the guides' circles at the last scan
+  std::vector<std::uint64_t> windows;      // (sprockets, then guides) x words: bit b set: block b in it
+  double margin = 0.0;                     // the search's margin at the last scan
+  bool valid = false;                      // (false: no scan yet)
+  const std::uint64_t* sprocketWindow(int s) const { return &windows[static_cast<std::size_t>(s) * words]; }
+  const std::uint64_t* guideWindow(int sprockets, int g) const {
+    return &windows[static_cast<std::size_t>(sprockets + g) * words];
+  }
 };
 
 /// One closed (or nearly closed) contact with its kinematics: gap, normal and tangent, lever
@@ -142,17 +170,11 @@ struct Data {
   std::vector<PlacedFace> placedFaces;        // (guide faces, guide by guide) placed at their guide's angle
   std::vector<double> guideBoundX, guideBoundY, guideReach2;  // (guides) the bounding circles of the
                                               // contact search: centre at the guide's angle, (radius + reach)^2
-  std::vector<long long> nearSprockets;       // (links + padding) bit end * kMaxSprockets + s: that end's
-                                              // roller within sprocket s's reach (rollers: the even links')
-  std::vector<long long> nearGuides;          // (links + padding) bit g: the link's centre within guide
-                                              // g's bounding circle
-  std::vector<int> rollerCandidates;          // (sprockets x links) per sprocket the rollers near it, as
-                                              // 2 link + end, in increasing order ...
-  std::vector<int> rollerCandidateCount;      // (sprockets) ... and how many
-  std::vector<int> plateCandidates;           // (links) the links near the guide being searched ...
-  int plateCandidateCount = 0;                // ... and how many
-  std::vector<RollerHint> rollerHints;        // (rollers x sprockets) what the last query found: search
-                                              // guesses and bounds only (results never depend on them)
+  SearchWindows windows;                      // the contact search's (results never depend on them)
+  std::vector<double> contactDamping;         // (3 links) the compliant contacts' damping rates per link
+                                              // coordinate [1/s] (iteration_matrix.h: linkDampingDiagonal)
+  RollerHints rollerHints;                    // what the last queries found: search guesses and bounds
+                                              // only (results never depend on them)
   long long rollerQueries = 0, rollerQueriesSkipped = 0;  // near rollers, and those the bound cleared
   int nContacts = 0;
   std::vector<double> gen;                    // (nGen) generalized forces, laid out as the

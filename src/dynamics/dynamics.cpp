@@ -35,7 +35,30 @@ void JointArrays::setForce(int j, Vec2 f) {
   }
 }
 
-Data::Data(const Model& m) : links(m.chain.links), joints(m.chain.links), vectorLanes(supportedVectorLanes()) {
+RollerHints::RollerHints(int sprockets, int pins)
+    : stride(pins + LinkArrays::kPadding),
+      gap(static_cast<std::size_t>(sprockets * stride), -1),
+      bodyX(gap.size(), 0.0),
+      bodyY(gap.size(), 0.0),
+      clearance(gap.size(), -1.0) {}
+
+SearchWindows::SearchWindows(int links, int sprockets, int guides)
+    : blocks((links + kBlock - 1) / kBlock),
+      words((blocks + 63) / 64),
+      centerX(static_cast<std::size_t>(links + LinkArrays::kPadding), 0.0),
+      centerY(centerX.size(), 0.0),
+      axisX(centerX.size(), 0.0),
+      axisY(centerX.size(), 0.0),
+      boundX(static_cast<std::size_t>(guides), 0.0),
+      boundY(static_cast<std::size_t>(guides), 0.0),
+      windows(static_cast<std::size_t>((sprockets + guides) * words), 0) {}
+
+Data::Data(const Model& m)
+    : links(m.chain.links),
+      joints(m.chain.links),
+      vectorLanes(supportedVectorLanes()),
+      windows(m.chain.links, static_cast<int>(m.sprockets.size()), static_cast<int>(m.guides.size())),
+      rollerHints(static_cast<int>(m.sprockets.size()), m.chain.links) {
   inputs.loadTorque.assign(m.rotors.size(), 0.0);
   rotorAngle.assign(m.rotors.size(), 0.0);
   rotorRate.assign(m.rotors.size(), 0.0);
@@ -47,14 +70,9 @@ Data::Data(const Model& m) : links(m.chain.links), joints(m.chain.links), vector
   guideBoundX.assign(m.guides.size(), 0.0);
   guideBoundY.assign(m.guides.size(), 0.0);
   guideReach2.assign(m.guides.size(), 0.0);
-  nearSprockets.assign(static_cast<std::size_t>(m.chain.links + LinkArrays::kPadding), 0);
-  nearGuides.assign(static_cast<std::size_t>(m.chain.links + LinkArrays::kPadding), 0);
   contacts.resize(static_cast<std::size_t>(m.chain.links) * (m.sprockets.size() + faces));
   gen.assign(m.nGen, 0.0);
-  rollerCandidates.assign(m.sprockets.size() * static_cast<std::size_t>(m.chain.links), 0);
-  rollerCandidateCount.assign(m.sprockets.size(), 0);
-  plateCandidates.assign(static_cast<std::size_t>(m.chain.links), 0);
-  rollerHints.assign((m.chain.links + 1) * m.sprockets.size(), RollerHint{});
+  contactDamping.assign(3 * static_cast<std::size_t>(m.chain.links), 0.0);
 }
 
 // Stages 1-5 of dynamics.h, the generalized forces summed into d.gen and the powers kept.
@@ -69,8 +87,7 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   if (d.jointForces) pDiss += evaluateJoints(m, d);
   else std::fill(d.gen.begin(), rotorGen, 0.0);
   if (d.compliantContacts) {
-    detectContacts(m, d, 0.0);
-    pDiss += evaluateCompliantContacts(m, d);
+    pDiss += detectContacts(m, d, 0.0, true);
   } else {
     d.nContacts = 0;
   }

@@ -8,8 +8,8 @@
 //                                                                (dynamics/contact_kinematics.h)
 //   3. joints        evaluateJoints: journal-bearing forces between neighbouring links
 //                                                                    (dynamics/joint_forces.h)
-//   4. contacts      detectContacts, then evaluateCompliantContacts: roller-sprocket and
-//                    plate-guide gaps, normal and friction forces
+//   4. contacts      detectContacts with the compliant law: roller-sprocket and plate-guide
+//                    gaps, normal and friction forces
 //                                  (dynamics/contact_kinematics.h, dynamics/contact_compliant.h)
 //   5. body forces   evaluateBodyForces: gravity, tensioner, guide pivots, load torques, the
 //                    input and dissipated powers                    (dynamics/body_forces.h)

@@ -1,5 +1,6 @@
 #include "dynamics/iteration_matrix.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dynamics/contact_compliant.h"
@@ -79,6 +80,34 @@ void linkIterationMatrix(const Model& m, const Data& d, double a, double b, Cycl
   for (int i = 0; i < m.chain.links; ++i) w.diagonal(i) = mass;
   if (d.jointForces) addJoints(m, d, a, b, w);
   if (d.compliantContacts) addContacts(m, d, a, b, w);
+}
+
+void linkDampingDiagonal(const Model& m, const Data& d, double* out) {
+  const int n = m.chain.links;
+  const double c = m.chain.jointDamping, arm2 = 0.25 * m.chain.pitch * m.chain.pitch;
+  const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
+  double *x = out + m.linkState(0, Model::kVx), *gamma = out + m.linkState(0, Model::kOmega);  // (x, then y)
+  // the compliant contacts: normal damping and regularised friction at the contact point (summed
+  // as they were found, detectContacts), and the joints: two per link, isotropic without clearance
+  // (the same for every link); along the pins' normal while a bearing with clearance is closed
+  const double* contact = d.compliantContacts ? d.contactDamping.data() : nullptr;
+  const bool isotropic = d.jointForces && m.chain.jointClearance <= 0.0;
+  const double joints = isotropic ? 2.0 * c * invM : 0.0, jointsTurning = isotropic ? 2.0 * c * arm2 * invJ : 0.0;
+  for (int i = 0; i < 2 * n; ++i) x[i] = joints + (contact ? contact[i] : 0.0);
+  for (int i = 0; i < n; ++i) gamma[i] = jointsTurning + (contact ? contact[2 * n + i] : 0.0);
+  for (int j = 0; d.jointForces && !isotropic && j < n; ++j) {
+    const int k = j + 1 == n ? 0 : j + 1;
+    const Vec2 dpos = d.links[j].front - d.links[k].rear;
+    const double dist = norm(dpos);
+    if (!(dist > m.chain.jointClearance && norm2(d.joints.force(j)) > 0.0)) continue;  // open
+    const Vec2 u = (1.0 / dist) * dpos;
+    for (const int link : {j, k}) {
+      const double along = dot(u, Vec2{d.links.ex[link], d.links.ey[link]});  // (the pin's arm lies along the axis)
+      x[link] += c * u.x * u.x * invM;
+      x[n + link] += c * u.y * u.y * invM;
+      gamma[link] += c * arm2 * (1.0 - along * along) * invJ;
+    }
+  }
 }
 
 }  // namespace chaindrive

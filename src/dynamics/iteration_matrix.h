@@ -18,4 +18,10 @@ namespace chaindrive {
 /// the force (the geometric stiffness of joints and contacts).
 void linkIterationMatrix(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w);
 
+/// The diagonal of W's damping part over the masses, -diag(dQ/dv) / M: per link coordinate (in the
+/// state's velocity components of `out`, model.h; the other components untouched) what the joints
+/// and compliant contacts held in d damp it by [1/s, >= 0]. The joints' part is that of pins
+/// half a pitch from the centre (the lever arm of every pin).
+void linkDampingDiagonal(const Model& m, const Data& d, double* out);
+
 }  // namespace chaindrive

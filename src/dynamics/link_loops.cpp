@@ -1,8 +1,5 @@
 #include "dynamics/link_loops.h"
 
-#include <cstring>
-
-#include "description/drive_description.h"
 #include "dynamics/joint_forces.h"
 #include "simd.h"
 #include "sincos.h"
@@ -107,49 +104,6 @@ CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
   return simd::reduce4(sums);
 }
 
-// The reach tests as those of one link at a time: within unless the squared distance exceeds the
-// squared reach (so a NaN position counts as near, and its query reports it).
-template <int W>
-CHAINDRIVE_ALWAYS_INLINE void nearLanes(const Model& m, Data& d) {
-  using V = typename simd::Lanes<W>::V;
-  using Mask = typename simd::Lanes<W>::Mask;
-  using simd::load;
-  using simd::splat;
-  const int n = m.chain.links;
-  const LinkArrays& L = d.links;
-  const int nSprockets = static_cast<int>(m.sprockets.size()), nGuides = static_cast<int>(m.guides.size());
-  // every element's circle and bits, splat once
-  struct Circle {
-    V x, y, radius2;
-    Mask bit, frontBit;
-  };
-  Circle sprockets[kMaxSprockets], guides[kMaxGuides];
-  for (int s = 0; s < nSprockets; ++s)
-    sprockets[s] = Circle{splat<V>(m.sprockets[s].center.x), splat<V>(m.sprockets[s].center.y),
-                          splat<V>(m.sprockets[s].reach2), Mask{} + (1LL << s), Mask{} + (1LL << (kMaxSprockets + s))};
-  for (int g = 0; g < nGuides; ++g)
-    guides[g] = Circle{splat<V>(d.guideBoundX[g]), splat<V>(d.guideBoundY[g]), splat<V>(d.guideReach2[g]),
-                       Mask{} + (1LL << g), Mask{}};
-  for (int i = 0; i < n; i += W) {
-    const V rearX = load<V>(&L.rearX[i]), rearY = load<V>(&L.rearY[i]);
-    const V frontX = load<V>(&L.frontX[i]), frontY = load<V>(&L.frontY[i]);
-    Mask nearSprockets = {};
-    for (int s = 0; s < nSprockets; ++s) {
-      const Circle& c = sprockets[s];
-      const V ax = rearX - c.x, ay = rearY - c.y, bx = frontX - c.x, by = frontY - c.y;
-      nearSprockets |= (~(ax * ax + ay * ay > c.radius2) & c.bit) | (~(bx * bx + by * by > c.radius2) & c.frontBit);
-    }
-    const V cx = load<V>(&L.cx[i]), cy = load<V>(&L.cy[i]);
-    Mask nearGuides = {};
-    for (int g = 0; g < nGuides; ++g) {
-      const V dx = cx - guides[g].x, dy = cy - guides[g].y;
-      nearGuides |= ~(dx * dx + dy * dy > guides[g].radius2) & guides[g].bit;
-    }
-    std::memcpy(&d.nearSprockets[i], &nearSprockets, sizeof nearSprockets);  // (the padding takes the rest)
-    std::memcpy(&d.nearGuides[i], &nearGuides, sizeof nearGuides);
-  }
-}
-
 __attribute__((target("avx2"))) void kinematicsAvx2(const Model& m, Data& d, const double* y) {
   kinematicsLanes<4>(m, d, y);
 }
@@ -157,9 +111,6 @@ void kinematicsSse2(const Model& m, Data& d, const double* y) { kinematicsLanes<
 
 __attribute__((target("avx2"))) double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
 double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
-
-__attribute__((target("avx2"))) void nearAvx2(const Model& m, Data& d) { nearLanes<4>(m, d); }
-void nearSse2(const Model& m, Data& d) { nearLanes<2>(m, d); }
 
 }  // namespace
 
@@ -172,11 +123,6 @@ void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
 
 double jointForcesLoop(const Model& m, Data& d) {
   return d.vectorLanes == 4 ? jointsAvx2(m, d) : jointsSse2(m, d);
-}
-
-void nearElementsLoop(const Model& m, Data& d) {
-  if (d.vectorLanes == 4) nearAvx2(m, d);
-  else nearSse2(m, d);
 }
 
 }  // namespace chaindrive

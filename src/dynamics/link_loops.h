@@ -6,8 +6,20 @@
 
 #include "assembly/model.h"
 #include "dynamics/data.h"
+#include "simd.h"
 
 namespace chaindrive {
+
+/// Per pin, from vectors over the links from an even one (as the pins: pin i is link i's rear pin):
+/// lane l of `rear` for an even pin l, lane l - 1 of `front` for an odd one. The rollers sit on
+/// the even links, one at each end: pinLanes of the rear and front pins are the rollers.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE typename simd::Lanes<W>::V pinLanes(typename simd::Lanes<W>::V rear,
+                                                             typename simd::Lanes<W>::V front) {
+  typename simd::Lanes<W>::Mask pick;
+  for (int l = 0; l < W; ++l) pick[l] = l % 2 == 0 ? l : W + l - 1;
+  return __builtin_shuffle(rear, front, pick);
+}
 
 /// The lanes of this CPU's widest vectors the loops use: 4 with AVX2, else 2.
 int supportedVectorLanes();
@@ -20,12 +32,5 @@ void linkKinematicsLoop(const Model& m, Data& d, const double* y);
 /// into the link part of d.gen; the largest squared pin separation into d.jointOpening2. Returns
 /// the joints' dissipated power (summed in four partial sums: link i in sum i mod 4).
 double jointForcesLoop(const Model& m, Data& d);
-
-/// The contact search's first, coarse test over all links (contact_kinematics.h): for every link
-/// the sprockets whose reach holds the roller at either of its ends (d.nearSprockets, bit
-/// end * kMaxSprockets + s) and the guides whose bounding circle, grown by the search's reach,
-/// holds its centre (d.nearGuides, bit g; the circles in d.guideBoundX, guideBoundY,
-/// guideReach2).
-void nearElementsLoop(const Model& m, Data& d);
 
 }  // namespace chaindrive

@@ -72,6 +72,12 @@ class ComponentSet {
 /// vector instructions (AVX2 where the CPU has it; each element the same operations as one at a
 /// time, without FMA: the same bits on every x86-64 machine).
 void addScaled(double* __restrict y, const double* __restrict x, double a, int n);
+/// y[i] += factor[i] x[i] for i < n.
+void addScaledBy(double* __restrict y, const double* __restrict x, const double* __restrict factor, int n);
+/// factor[i] = a / (1 + a factor[i]) for i < n, in place: the kick of a over a component damped at
+/// the rate factor[i] held on entry (>= 0) with the damping implicit (a over an undamped one:
+/// addScaled's bits).
+void dampedKick(double* factor, double a, int n);
 
 /// The components of a system in the schemes' three roles.
 struct ComponentRoles {

@@ -13,7 +13,8 @@ std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const AdaptiveOptions& 
 /// step limits and step count).
 std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const AdaptiveOptions& adaptive, const ErkOptions& erk,
                                           const FixedStepOptions* fixed);
-std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const FixedStepOptions& fixed);
+/// implicitDamping: fixed-verlet-implicit-damping (fixed_verlet.cpp).
+std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const FixedStepOptions& fixed, bool implicitDamping);
 std::unique_ptr<Integrator> makeFixedNewmark(OdeSystem& sys, const FixedStepOptions& fixed,
                                              const NewmarkOptions& newmark);
 

@@ -31,6 +31,12 @@ class OdeSystem {
   /// outside that part). Returns as rhs does.
   virtual bool hasStiffSolve() const { return false; }
   virtual int solveStiff(double /*a*/, double /*b*/, double* /*r*/) noexcept { return -1; }
+  /// For the fixed-step schemes that treat damping implicitly: the damping rate of every velocity
+  /// component, -d(its acceleration)/d(itself) in the system's stiff part at its last rhs
+  /// evaluation, into d (state-sized; its velocity components are written: >= 0 [1/s], 0 outside
+  /// that part).
+  virtual bool hasDampingDiagonal() const { return false; }
+  virtual void dampingDiagonal(double* /*d*/) noexcept {}
   /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations; -1 when
   /// df/dy has no such band (the band solver then refuses the system).
   virtual int halfBandwidth() const { return size(); }
@@ -57,7 +63,8 @@ struct AdaptiveOptions {
   bool stopAtOutputs = false;         // never step past an output time (co-simulation)
 };
 
-/// The fixed-step methods (fixed-verlet, fixed-newmark, arkode-erk-fixed; time stepping too).
+/// The fixed-step methods (fixed-verlet, fixed-verlet-implicit-damping, fixed-newmark,
+/// arkode-erk-fixed; time stepping too).
 struct FixedStepOptions {
   double step = 2e-6;                 // the step, exactly [s]
 };

@@ -80,6 +80,13 @@ int DriveSystem::solveStiff(double a, double b, double* r) noexcept {
   return 0;
 }
 
+void DriveSystem::dampingDiagonal(double* d) noexcept {
+  const Model& m = *model_;
+  for (const RotorModel& r : m.rotors)
+    if (r.stateRate >= 0) d[r.stateRate] = 0.0;  // (rotors and guides: explicit)
+  linkDampingDiagonal(m, data_, d);
+}
+
 void DriveSystem::toleranceScales(double* scale) const {
   const Model& m = *model_;
   const double linkScale[6] = {1e-3, 1e-3, 1e-1, 1.0, 1.0, 1e2};  // m, m, rad, m/s, m/s, rad/s

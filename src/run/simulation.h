@@ -47,6 +47,8 @@ class DriveSystem : public OdeSystem {
   int solveStiff(double a, double b, double* r) noexcept override;  // joints and contacts on the links
   // the state is laid out component by component (model.h): a link's position and velocity lie
   // 3 links apart, so df/dy has no narrow band
+  bool hasDampingDiagonal() const override { return true; }
+  void dampingDiagonal(double* d) noexcept override;       // joints and contacts on the links
   int halfBandwidth() const override { return -1; }
   void toleranceScales(double* scale) const override;
   int velocityOf(int i) const override { return velocityOf_[i]; }

@@ -205,8 +205,8 @@ TEST(ContactKinematics, CarriedHintsChangeNoBit) {
       std::vector<double> y = s.y;
       for (std::size_t i = 0; i < y.size(); ++i) y[i] += t * ydot[i];
       Data fresh(m);
-      for (std::size_t h = 0; h < scrambled.rollerHints.size(); ++h)
-        scrambled.rollerHints[h].gap = static_cast<int>((h * 7919 + step) % 40);
+      for (std::size_t h = 0; h < scrambled.rollerHints.gap.size(); ++h)
+        scrambled.rollerHints.gap[h] = static_cast<int>((h * 7919 + step) % 40);
       for (Data* d : {&fresh, &carried, &scrambled}) {
         d->inputs = s.d.inputs;
         evaluateKinematics(m, *d, y.data());

@@ -1,7 +1,8 @@
 // The per-link loops (src/dynamics/link_loops.h) give, bit for bit, what the formulas of one link
-// at a time give, with 2 lanes (SSE2) and with 4 (AVX2, where this CPU has it): on the default
-// drive, on a drive of 122 links (a last vector of 4 lanes only partly filled) and with joint
-// clearance (the other branch of the joint law).
+// at a time give, and they and the contact search's loops (contact_lanes.h) the same bits with 2
+// lanes (SSE2) and with 4 (AVX2, where this CPU has it): on the default drive, on a drive of 122
+// links (a last vector of 4 lanes only partly filled) and with joint clearance (the other branch
+// of the joint law). (The contact search against one query at a time: contact_kinematics_test.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,24 +34,29 @@ std::vector<double> loopOutputs(const Model& m, const Data& d, double power) {
     out.push_back(d.joints.forceX()[j]);
     out.push_back(d.joints.forceY()[j]);
   }
-  out.insert(out.end(), d.gen.begin(), d.gen.begin() + 3 * m.chain.links);
-  for (int i = 0; i < m.chain.links; ++i) {
-    out.push_back(static_cast<double>(d.nearSprockets[i]));
-    out.push_back(static_cast<double>(d.nearGuides[i]));
+  out.insert(out.end(), d.gen.begin(), d.gen.end());
+  out.push_back(d.nContacts);
+  for (int k = 0; k < d.nContacts; ++k) {
+    const ContactPoint& c = d.contacts[k];
+    for (double v : {double(c.link), double(c.end), double(c.element), c.gap, c.normal.x, c.normal.y, c.tangent.x,
+                     c.tangent.y, c.rLink.x, c.rLink.y, c.rRotor.x, c.rRotor.y, c.vN, c.vT, c.fN, c.fT})
+      out.push_back(v);
   }
   out.push_back(power);
   out.push_back(d.jointOpening2);
   return out;
 }
 
-// Kinematics, joints and the coarse contact test with the given lanes.
+// Kinematics, joints and the contacts with their forces (the contact search's loops) with the
+// given lanes.
 std::vector<double> runLoops(const Model& m, const InputSignal& in, const std::vector<double>& y, int lanes) {
   Data d(m);
   d.vectorLanes = lanes;
   in.evaluate(0.0, d.inputs);
   evaluateKinematics(m, d, y.data());
-  const double power = evaluateJoints(m, d);
-  detectContacts(m, d, 0.0);  // (fills the guides' circles, then runs the coarse test)
+  std::fill(d.gen.begin() + m.rotorGen(0), d.gen.end(), 0.0);
+  double power = evaluateJoints(m, d);
+  power += detectContacts(m, d, 0.0, true);
   return loopOutputs(m, d, power);
 }
 
