@@ -144,9 +144,10 @@ void ChainDriveModel::checkChoices(std::vector<std::string>& problems) const {
   if (span && (params_.contactMethod == "event-driven" || params_.contactMethod == "time-stepping"))
     problems.push_back("contact.method: '" + params_.contactMethod +
                        "' does not apply to fidelity 'span'; allowed with it: compliant (or empty: the drive's)");
-  if (span && params_.method == "fixed-newmark")
-    problems.push_back("solver.method: 'fixed-newmark' does not apply to fidelity 'span' (its implicit part is the "
-                       "links' joints and contacts); allowed with it: the other methods");
+  const bool linkOnly = params_.method == "fixed-newmark" || params_.method.rfind("fixed-verlet-implicit", 0) == 0;
+  if (span && linkOnly)
+    problems.push_back("solver.method: '" + params_.method + "' does not apply to fidelity 'span' (its implicit part "
+                       "is the links' joints and contacts); allowed with it: the other methods");
   if (span && params_.jointModel == "ideal")
     problems.push_back("chain.jointModel: 'ideal' does not apply to fidelity 'span'; allowed with it: journal-bearing "
                        "(or empty: the drive's)");

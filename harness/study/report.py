@@ -6,10 +6,11 @@ from ..plots import plt
 from .chaos import report as chaos_report
 from . import ladder
 from .errors import joint_limit
-from .methods import KIND_CODES, METHODS, THRESHOLD_RMS, VERDICT_KEYS, is_rigid, setting_label
+from .methods import HORIZON_LABEL, KIND_CODES, METHODS, THRESHOLD_RMS, VERDICT_KEYS, is_rigid, setting_label
 
-MARKERS = dict(zip([m["id"] for m in METHODS], "osD^v<>XpP"))
-COLORS = dict(zip([m["id"] for m in METHODS], plt.rcParams["axes.prop_cycle"].by_key()["color"] + ["k"]))
+MARKERS = dict(zip([m["id"] for m in METHODS], "osD^v<>XpPh*"))
+COLORS = dict(zip([m["id"] for m in METHODS], plt.rcParams["axes.prop_cycle"].by_key()["color"] + ["k", "0.5"]))
+assert len(MARKERS) == len(COLORS) == len(METHODS), "a marker and a colour for every method"
 RIGID = {m["id"] for m in METHODS if is_rigid(m)}
 SPAN_LABEL = "span model against the link model (closed loop, FMU)"
 
@@ -20,7 +21,7 @@ PANELS = [("tensioner.F.mean", "tensioner force: mean"), ("tensioner.F.peakToPea
           ("tensioner.F.order2", "tensioner force: order 2"), ("tensioner.F.order8", "tensioner force: order 8"),
           ("tensioner.F.order{mesh}", "tensioner force: meshing order {mesh}"),
           ("tensionGuide.phi.order2_deg", "tension-guide angle: order 2"),
-          ("short_F_rms_pct", "tensioner force: RMS error over the first 2 ms [%]")]
+          ("short_F_rms_pct", f"tensioner force: RMS error over the first {HORIZON_LABEL} [%]")]
 
 
 def mesh_of(scene):
@@ -221,7 +222,7 @@ def compliant_verdicts(scene):
         lines.append(f"- {key} (reference {r['mean']:.4g} +- {r['ci95']:.2g} {r['unit']}, cycle scatter "
                      f"{r['sd']:.2g}): " + (f"cheapest consistent is {describe(p)}." if p else "no method consistent."))
     p = cheapest(compliant, lambda p: p["errors"]["short_F_rms_pct"] <= THRESHOLD_RMS)
-    lines.append("- Trajectory fidelity (tensioner force within 1 % RMS over the first 2 ms): "
+    lines.append(f"- Trajectory fidelity (tensioner force within 1 % RMS over the first {HORIZON_LABEL}): "
                  + (f"cheapest is {describe(p)}." if p else "no method of the sweep reaches it."))
     return lines
 
@@ -264,7 +265,8 @@ def reference_section(sc):
                  f"{c['errorUnit']} | {c['z']:+.2f} |")
     L += ["", f"Short horizon: arkode-erk at rtol {short['rtol']:g}; tightened to {short['check_rtol']:g} it changes "
               f"by {short['change']['short_F_rms_pct']:.2g} % RMS in tensioner force and "
-              f"{short['change']['short_phi_rms_rad']:.2g} rad in tension-guide angle over the first 2 ms.", ""]
+              f"{short['change']['short_phi_rms_rad']:.2g} rad in tension-guide angle over the first {HORIZON_LABEL}.",
+          ""]
     return L
 
 
@@ -275,7 +277,8 @@ def points_table(sc):
             f"tensioner.F.order{mesh}"]
     L = ["Errors against the reference: % or dB (z = error over the combined 95 % interval; |z| <= 1: "
          "consistent). Consistent = every statistic of the verdict consistent jointly at 95 %.", "",
-         "| method | setting | CPU s/s | cycles | " + " | ".join(keys) + " | consistent | 2 ms: F RMS % | counters |",
+         "| method | setting | CPU s/s | cycles | " + " | ".join(keys) + f" | consistent | {HORIZON_LABEL}: F RMS % | "
+         "counters |",
          "|---|---|---|---|" + "---|" * len(keys) + "---|---|---|"]
     for p in sc["points"]:
         if p["kind"] != "ok":

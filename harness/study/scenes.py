@@ -13,7 +13,7 @@ from ..job import run_in_cycles
 from ..tables import tables
 from .errors import as_accurate_as_physics, compare, reference_statistics, short_errors, statistics
 from .methods import (METHODS, MIN_CYCLES, REFERENCE, REFERENCE_CHECK, REFERENCE_FACTOR, RIGID_SHARE, SETTLE_CYCLES,
-                      SHORT_HORIZON, default_drive_json, is_rigid, run_solver, setting_label)
+                      SHORT_HORIZON, HORIZON_LABEL, default_drive_json, is_rigid, run_solver, setting_label)
 
 
 class Study:
@@ -178,4 +178,4 @@ def point_line(p):
     F, pp, o2 = e["tensioner.F.mean"], e["tensioner.F.peakToPeak"], e["tensioner.F.order2"]
     return (head + f" {p['cpu_per_s']:9.2f} CPU s/s  F mean {F['error']:+6.2f} % (z {F['z']:+5.2f})  F p2p "
             f"{pp['error']:+6.2f} % (z {pp['z']:+5.2f})  order 2 {o2['error']:+5.2f} dB (z {o2['z']:+5.2f})  "
-            f"{'consistent' if p['consistent'] else 'NOT consistent'}  2 ms: F {e['short_F_rms_pct']:.3g} %")
+            f"{'consistent' if p['consistent'] else 'NOT consistent'}  {HORIZON_LABEL}: F {e['short_F_rms_pct']:.3g} %")

@@ -33,8 +33,8 @@ known only to within the scatter of the cycles (harness/cycle_stats.py).
    method is as accurate as the physics allows when all its headline statistics are consistent,
    jointly at 95 % (Bonferroni: each |z| <= the (1 - 0.05/K) quantile over 1.96 for K statistics).
    A run that fails is a failure marker with the kind the solver reports.
-4. Convergence order: the short-horizon trajectory error over the first 2 ms after t0 (before the
-   chaotic growth), against arkode-erk at rtol 1e-11, checked at 1e-12.
+4. Convergence order: the short-horizon trajectory error over the first 1 ms after t0 (before the
+   chaotic growth: methods.SHORT_HORIZON), against arkode-erk at rtol 1e-11, checked at 1e-12.
 5. Stability map: each method at its default setting over engine speed, over its step or
    tolerance, and over joint and contact stiffness (factors on the default drive), from the
    pre-loaded state over 20 ms: ok, or the failure detected by the solver (blow-up, non-finite

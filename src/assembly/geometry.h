@@ -113,14 +113,24 @@ PlacedFace placeFace(const GuideFace& face, Vec2 pivot, double c, double s);
 /// them, so that the contact search's links several at a time give the bits of one at a time.
 namespace arcface {
 
-/// faceNear's test of an arc face for a point (px, py).
+/// faceNear's test of an arc face for a point (px, py): within 2 reach of a corner or of the arc's
+/// circle (its distance from the centre within radius -+ 2 reach: compared squared).
 template <class T>
 CHAINDRIVE_ALWAYS_INLINE auto near(const PlacedFace& pf, T px, T py, double reach) {
   const double reach2 = 4.0 * reach * reach;  // (2 reach)^2
   const T ax = px - pf.corner0.x, ay = py - pf.corner0.y, bx = px - pf.corner1.x, by = py - pf.corner1.y;
-  const T cx = px - pf.center.x, cy = py - pf.center.y;
-  return (ax * ax + ay * ay <= reach2) | (bx * bx + by * by <= reach2) |
-         (simd::abs(simd::sqrt(cx * cx + cy * cy) - pf.face->arc.radius) <= 2.0 * reach);
+  const T cx = px - pf.center.x, cy = py - pf.center.y, c2 = cx * cx + cy * cy;
+  const double inner = std::max(0.0, pf.face->arc.radius - 2.0 * reach), outer = pf.face->arc.radius + 2.0 * reach;
+  return (ax * ax + ay * ay <= reach2) | (bx * bx + by * by <= reach2) | ((c2 >= inner * inner) & (c2 <= outer * outer));
+}
+
+/// Whether a corner lies within `reach` of (px, py): a link centred there can touch a corner
+/// (nearerCorner) only then, with its plate edge within reach of its centre, unless the corner
+/// lies beyond the plate's other edge (a link tunnelled through its height).
+template <class T>
+CHAINDRIVE_ALWAYS_INLINE auto cornerNear(const PlacedFace& pf, T px, T py, double reach) {
+  const T ax = px - pf.corner0.x, ay = py - pf.corner0.y, bx = px - pf.corner1.x, by = py - pf.corner1.y;
+  return (ax * ax + ay * ay <= reach * reach) | (bx * bx + by * by <= reach * reach);
 }
 
 /// The side (-1 or +1 along perp(e)) of the plate edge facing the arc, for a link centred at
@@ -135,12 +145,11 @@ CHAINDRIVE_ALWAYS_INLINE T side(const PlacedFace& pf, T px, T py, T ex, T ey) {
   return simd::select(-ey * ox + ex * oy > 0.0, T{} - 1.0, T{} + 1.0);
 }
 
-/// The contact of the plate edge e0-e1 with the arc: the edge's point q, the gap and the normal
-/// where q's direction from the arc's centre lies within the arc (the mask returned); r, the
-/// distance of q from the centre, tells the rest: none where r <= 0, the corners' elsewhere.
+/// The contact of the plate edge e0-e1 with the arc: the edge's point q and the gap where q's
+/// direction from the arc's centre lies within the arc (the mask returned; normal() its normal);
+/// r, the distance of q from the centre, tells the rest: none where r <= 0, the corners' elsewhere.
 template <class T>
-CHAINDRIVE_ALWAYS_INLINE auto hit(const PlacedFace& pf, T e0x, T e0y, T e1x, T e1y, T& qx, T& qy, T& gap, T& nx, T& ny,
-                                  T& r) {
+CHAINDRIVE_ALWAYS_INLINE auto hit(const PlacedFace& pf, T e0x, T e0y, T e1x, T e1y, T& qx, T& qy, T& gap, T& r) {
   const GuideFace& f = *pf.face;
   const Vec2 center = pf.center;
   if (f.type == GuideFace::Type::ConvexArc) {  // the edge's point nearest the centre
@@ -162,12 +171,14 @@ CHAINDRIVE_ALWAYS_INLINE auto hit(const PlacedFace& pf, T e0x, T e0y, T e1x, T e
   const T bodyX = pf.c * dx - s * dy, bodyY = s * dx + pf.c * dy;
   const auto within = (f.arc.dir0.x * bodyY - f.arc.dir0.y * bodyX >= 0.0) &
                       (bodyX * f.arc.dir1.y - bodyY * f.arc.dir1.x >= 0.0);
-  const double sign = f.type == GuideFace::Type::ConvexArc ? 1.0 : -1.0;
-  gap = sign == 1.0 ? r - f.arc.radius : f.arc.radius - r;
-  const T inverse = sign / r;
-  nx = inverse * dx;
-  ny = inverse * dy;
+  gap = f.type == GuideFace::Type::ConvexArc ? r - f.arc.radius : f.arc.radius - r;
   return within;
+}
+
+/// The arc's normal (towards the chain) at its contact with the edge point (qx, qy), r from the centre.
+inline Vec2 normal(const PlacedFace& pf, double qx, double qy, double r) {
+  const double inverse = (pf.face->type == GuideFace::Type::ConvexArc ? 1.0 : -1.0) / r;
+  return Vec2{inverse * (qx - pf.center.x), inverse * (qy - pf.center.y)};
 }
 
 }  // namespace arcface
@@ -209,11 +220,11 @@ inline FaceHit plateEdgeFaceContact(const PlacedFace& pf, Vec2 e0, Vec2 e1, Vec2
     case GuideFace::Type::ConvexArc:
     case GuideFace::Type::ConcaveArc: {
       double r;
-      const bool within = arcface::hit(pf, e0.x, e0.y, e1.x, e1.y, hit.point.x, hit.point.y, hit.gap, hit.normal.x,
-                                       hit.normal.y, r);
+      const bool within = arcface::hit(pf, e0.x, e0.y, e1.x, e1.y, hit.point.x, hit.point.y, hit.gap, r);
       if (r <= 0.0) return FaceHit{};
       if (!within) return nearerCorner(pf.corner0, pf.corner1, e0, e1, nOut);
       hit.valid = true;
+      hit.normal = arcface::normal(pf, hit.point.x, hit.point.y, r);
       return hit;
     }
     case GuideFace::Type::Line: {

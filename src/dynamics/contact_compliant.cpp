@@ -10,7 +10,7 @@ CompliantResult compliantContactForce(const ContactLaw& law, double vReg, Contac
   CompliantResult r;
   c.fN = c.fT = 0.0;
   if (c.gap >= 0.0) return r;
-  contactLaw(law, vReg, c.gap, c.vN, c.vT, c.fN, c.fT, r.power);
+  contactLaw(law, c.gap, c.vN, c.vT, regularisedSliding(vReg, c.vT), c.fN, c.fT, r.power);
   r.energy = springForce(law, -c.gap) * -c.gap / (law.exponent + 1.0);
   return r;
 }
@@ -22,7 +22,7 @@ CompliantSlopes compliantContactSlopes(const ContactLaw& law, double vReg, const
   const double spring = springForce(law, delta);
   const double springRate = law.exponent * spring / delta;  // d(spring)/d(delta)
   k.byPenetration = law.huntCrossley ? springRate * (1.0 + 1.5 * law.dampingFactor * deltaRate) : springRate;
-  dampingSlopes(law, vReg, c.gap, c.fN, c.vT, k.byPenetrationRate, k.bySliding);
+  dampingSlopes(law, vReg, c.gap, c.fN, regularisedSliding(vReg, c.vT), k.byPenetrationRate, k.bySliding);
   return k;
 }
 

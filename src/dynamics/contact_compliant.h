@@ -3,6 +3,7 @@
 // function of the sliding speed (the paper's remark on the CVT model).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -29,20 +30,25 @@ CHAINDRIVE_ALWAYS_INLINE T springForce(const ContactLaw& law, T delta) {
   }
 }
 
+/// The sliding speed regularised over vReg, sqrt(vT^2 + vReg^2), of the friction law.
+template <class T>
+CHAINDRIVE_ALWAYS_INLINE T regularisedSliding(double vReg, T vT) {
+  return simd::sqrt(vT * vT + vReg * vReg);
+}
+
 /// The law for a closed contact (gap < 0) of one contact (T = double) or a vector of them: the
 /// normal and friction forces on the chain from the gap and the normal and tangential relative
-/// velocities, and the power dissipated (one definition: the contact search's rollers several at a
-/// time give the bits of one at a time).
+/// velocities (and the regularised sliding speed, regularisedSliding), and the power dissipated
+/// (one definition: the contact search's rollers several at a time give the bits of one at a time).
 template <class T>
-CHAINDRIVE_ALWAYS_INLINE void contactLaw(const ContactLaw& law, double vReg, T gap, T vN, T vT, T& fN, T& fT,
-                                         T& power) {
+CHAINDRIVE_ALWAYS_INLINE void contactLaw(const ContactLaw& law, T gap, T vN, T vT, T sliding, T& fN, T& fT, T& power) {
   const T delta = -gap;      // penetration
   const T deltaRate = -vN;   // penetration rate
   const T spring = springForce(law, delta);
   T f = law.huntCrossley ? spring * (1.0 + 1.5 * law.dampingFactor * deltaRate) : spring + law.damping * deltaRate;
   f = simd::select(f < 0.0, T{}, f);
   // regularised Coulomb friction: -mu fN v / sqrt(v^2 + vReg^2)
-  fT = -law.friction * f * vT / simd::sqrt(vT * vT + vReg * vReg);
+  fT = -law.friction * f * vT / sliding;
   fN = f;
   power = (f - spring) * deltaRate - fT * vT;
 }
@@ -61,22 +67,20 @@ CompliantSlopes compliantContactSlopes(const ContactLaw& law, double vReg, const
 /// The two damping slopes of compliantContactSlopes alone (byPenetrationRate, bySliding) for a
 /// closed contact (gap < 0, fN > 0), for one contact (T = double) or a vector of them.
 template <class T>
-CHAINDRIVE_ALWAYS_INLINE void dampingSlopes(const ContactLaw& law, double vReg, T gap, T fN, T vT, T& byPenetrationRate,
-                                            T& bySliding) {
+CHAINDRIVE_ALWAYS_INLINE void dampingSlopes(const ContactLaw& law, double vReg, T gap, T fN, T sliding,
+                                            T& byPenetrationRate, T& bySliding) {
   byPenetrationRate = law.huntCrossley ? 1.5 * law.dampingFactor * springForce(law, -gap) : T{} + law.damping;
-  const double vReg2 = vReg * vReg;
-  const T slide2 = vT * vT + vReg2;
-  bySliding = law.friction * fN * vReg2 / (slide2 * simd::sqrt(slide2));
+  bySliding = law.friction * fN * (vReg * vReg) / (sliding * sliding * sliding);
 }
 
 /// What a closed contact's damping (dampingSlopes at the contact point) adds to its link's damping
 /// rates along x, y and gamma [1/s] (the diagonal of the implicit-damping schemes, dynamics/
 /// iteration_matrix.h): for one contact or a vector of them; zero where fN is not positive.
 template <class T>
-CHAINDRIVE_ALWAYS_INLINE void contactDampingRates(const Model& m, const ContactLaw& law, T gap, T fN, T vT, T nx, T ny,
-                                                  T tx, T ty, T rx, T ry, T& rateX, T& rateY, T& rateGamma) {
+CHAINDRIVE_ALWAYS_INLINE void contactDampingRates(const Model& m, const ContactLaw& law, T gap, T fN, T sliding, T nx,
+                                                  T ny, T tx, T ty, T rx, T ry, T& rateX, T& rateY, T& rateGamma) {
   T kn, kt;
-  dampingSlopes(law, m.frictionRegularization, gap, fN, vT, kn, kt);
+  dampingSlopes(law, m.frictionRegularization, gap, fN, sliding, kn, kt);
   const auto closed = fN > 0.0;
   kn = simd::select(closed, kn, T{});
   kt = simd::select(closed, kt, T{});
@@ -87,14 +91,15 @@ CHAINDRIVE_ALWAYS_INLINE void contactDampingRates(const Model& m, const ContactL
   rateGamma = (kn * rn * rn + kt * rt * rt) * invJ;
 }
 
-/// Adds contact c's damping rates to its link's entries of d.contactDamping.
-inline void addContactDamping(const Model& m, const ContactLaw& law, const ContactPoint& c, Data& d) {
+/// Adds closed contact c's damping rates to its link's entries of `rates` (laid out as the
+/// generalized coordinates, model.h).
+inline void addContactDamping(const Model& m, const ContactLaw& law, const ContactPoint& c, double* rates) {
   double x, y, gamma;
-  contactDampingRates(m, law, c.gap, c.fN, c.vT, c.normal.x, c.normal.y, c.tangent.x, c.tangent.y, c.rLink.x,
-                      c.rLink.y, x, y, gamma);
-  d.contactDamping[m.linkGen(c.link, Model::kX)] += x;
-  d.contactDamping[m.linkGen(c.link, Model::kY)] += y;
-  d.contactDamping[m.linkGen(c.link, Model::kGamma)] += gamma;
+  contactDampingRates(m, law, c.gap, c.fN, regularisedSliding(m.frictionRegularization, c.vT), c.normal.x, c.normal.y,
+                      c.tangent.x, c.tangent.y, c.rLink.x, c.rLink.y, x, y, gamma);
+  rates[m.linkGen(c.link, Model::kX)] += x;
+  rates[m.linkGen(c.link, Model::kY)] += y;
+  rates[m.linkGen(c.link, Model::kGamma)] += gamma;
 }
 
 /// Adds the generalized forces of contact c (forces c.fN, c.fT) to the link and rotor entries.
@@ -106,12 +111,12 @@ inline void addContactGen(const Model& m, const ContactPoint& c, double* gen) {
   if (c.rotor >= 0) gen[m.rotorGen(c.rotor)] -= cross(c.rRotor, f);
 }
 
-/// The law's forces on contact c (compliantContactForce) added to d.gen, its damping to
-/// d.contactDamping; returns the dissipated power.
+/// The law's forces on contact c (compliantContactForce) added to d.gen, its gap to the deepest;
+/// returns the dissipated power.
 inline double addCompliantForce(const Model& m, const ContactLaw& law, ContactPoint& c, Data& d) {
   const double power = compliantContactForce(law, m.frictionRegularization, c).power;
   addContactGen(m, c, d.gen.data());
-  addContactDamping(m, law, c, d);
+  d.deepestGap = std::min(d.deepestGap, c.gap);
   return power;
 }
 

@@ -124,8 +124,8 @@ FaceHit plateEdgeHit(const Model& m, const PlacedFace& pf, const LinkKin& lk, do
 
 }  // namespace
 
-void setPlateContact(const Model& m, int guide, int face, int link, const LinkKin& lk, const FaceHit& hit, double rate,
-                     ContactPoint& cp) {
+void setPlateContact(const Model& m, int guide, int face, int link, Vec2 center, Vec2 velocity, double omega,
+                     const FaceHit& hit, double rate, ContactPoint& cp) {
   const GuideModel& g = m.guides[guide];
   cp.kind = ContactPoint::Kind::PlateGuide;
   cp.link = link;
@@ -136,9 +136,9 @@ void setPlateContact(const Model& m, int guide, int face, int link, const LinkKi
   cp.gap = hit.gap;
   cp.normal = hit.normal;
   cp.tangent = perp(hit.normal);
-  cp.rLink = hit.point - lk.c;
+  cp.rLink = hit.point - center;
   cp.rRotor = hit.point - g.pivot;
-  const Vec2 vChain = lk.v + crossWz(lk.w, cp.rLink);
+  const Vec2 vChain = velocity + crossWz(omega, cp.rLink);
   const Vec2 vRel = g.rotor >= 0 ? vChain - crossWz(rate, cp.rRotor) : vChain;
   cp.vN = dot(vRel, cp.normal);
   cp.vT = dot(vRel, cp.tangent);
@@ -149,7 +149,7 @@ bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace&
                           double rate, double margin, ContactPoint& cp) {
   const FaceHit hit = plateEdgeHit(m, pf, lk, facingSide(pf, lk.c, lk.e));
   if (!hit.valid || hit.gap >= margin) return false;
-  setPlateContact(m, guide, face, link, lk, hit, rate, cp);
+  setPlateContact(m, guide, face, link, lk.c, lk.v, lk.w, hit, rate, cp);
   return true;
 }
 
@@ -160,6 +160,7 @@ namespace {
 int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink, bool forces, int count,
                         double& power) {
   const int cap = static_cast<int>(d.contacts.size());
+  const bool list = d.listsContacts(forces);
   std::size_t firstFace = 0;  // of the guide, in d.placedFaces
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
@@ -176,13 +177,14 @@ int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink
                                   count, power);
         continue;
       }
-      for (int i = 0; i < m.chain.links && count < cap; ++i) {
+      for (int i = 0; i < m.chain.links && (count < cap || !list); ++i) {
         const LinkKin lk = d.links[i];
         if (norm2(lk.c - bc) > reach2 || !faceNear(pf, lk.c, reachLink)) continue;
         const FaceHit hit = plateEdgeHit(m, pf, lk, facingSide(pf, lk.c, lk.e));
         if (!hit.valid || hit.gap >= margin) continue;
-        ContactPoint& c = d.contacts[count++];
-        setPlateContact(m, static_cast<int>(gi), static_cast<int>(f), i, lk, hit, rate, c);
+        ContactPoint unlisted;
+        ContactPoint& c = list ? d.contacts[count++] : unlisted;
+        setPlateContact(m, static_cast<int>(gi), static_cast<int>(f), i, lk.c, lk.v, lk.w, hit, rate, c);
         if (forces) power += addCompliantForce(m, m.plateGuide, c, d);
       }
     }
@@ -208,10 +210,10 @@ double detectContacts(const Model& m, Data& d, double margin, bool forces) {
     d.guideReach2[gi] = reach * reach;
   }
   updateSearchWindows(m, d, margin);
+  d.deepestGap = 0.0;
   // the rollers sprocket by sprocket, then the plates guide by guide, several at a time
   int count = 0;
   double power = 0.0;
-  if (forces) std::fill(d.contactDamping.begin(), d.contactDamping.end(), 0.0);
   for (std::size_t s = 0; s < m.sprockets.size(); ++s)
     count = rollerContactsLoop(m, d, static_cast<int>(s), margin, forces, count, power);
   d.nContacts = detectPlateContacts(m, d, margin, reachLink, forces, count, power);

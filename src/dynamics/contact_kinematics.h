@@ -128,10 +128,11 @@ CHAINDRIVE_ALWAYS_INLINE void setContact(ContactPoint& cp, int link, int end, in
 }  // namespace roller
 
 /// The plate-guide query's piece shared with the contact search's links several at a time
-/// (contact_lanes.h): fills cp with the contact `hit` of link `link`'s plate edge (kinematics lk)
-/// with face `face` of guide `guide`, the guide turning at `rate`.
-void setPlateContact(const Model& m, int guide, int face, int link, const LinkKin& lk, const FaceHit& hit, double rate,
-                     ContactPoint& cp);
+/// (contact_lanes.h): fills cp with the contact `hit` of link `link`'s plate edge (the link centred
+/// at `center`, moving at `velocity` and turning at `omega`) with face `face` of guide `guide`, the
+/// guide turning at `rate`.
+void setPlateContact(const Model& m, int guide, int face, int link, Vec2 center, Vec2 velocity, double omega,
+                     const FaceHit& hit, double rate, ContactPoint& cp);
 
 /// Tunnelling check: true if some contact of `contacts[0..n)` penetrates deeper than `limit`
 /// [m] (a roller through a tooth, a link through a guide face); `why` then names the contact,
@@ -142,6 +143,8 @@ bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t
 /// rollers by sprocket, link and end; then plates by guide, face and link. With `forces` (the
 /// compliant contacts, margin 0), also their forces by the compliant law (c.fN, c.fT; one pass,
 /// contact_compliant.h), added to d.gen in that order; returns their dissipated power (0 without).
+/// d.deepestGap: the deepest gap found (0 without a penetration); with forces and
+/// !d.listContacts, that and the forces only (nothing listed, d.nContacts 0).
 double detectContacts(const Model& m, Data& d, double margin, bool forces = false);
 
 /// Column of W for direction `dir` (normal or tangent) of contact c: the link entries

@@ -111,25 +111,113 @@ CHAINDRIVE_ALWAYS_INLINE void windowLanes(const Model& m, Data& d, double margin
   if (!keep) scanWindows<W>(m, d, margin);
 }
 
-// Sprocket s against the W rollers (pins) from pin j.
-// Counts of the rollers near a sprocket and of those the clearance bound skipped, lane by lane.
+// What a sprocket's pass sums lane by lane: the rollers near it and those the clearance bound
+// skipped; the contacts' torque on it and their dissipated power, in four partial sums (pin j in
+// sum j mod 4: the same sums whatever the vector width), combined in one order at the end; the
+// deepest gap.
 template <int W>
-struct Tally {
+struct Sums {
   typename simd::Lanes<W>::Mask near = {}, skipped = {};
+  typename simd::Lanes<W>::V torque[4 / W] = {}, power[4 / W] = {}, deepest = {};
 };
 
+// Lanes l and l + 1 (a link's two rollers) added in both: the sums per even link.
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V pairSums(V v) {
+  if constexpr (simd::lanesOf<V>() == 4) return v + __builtin_shuffle(v, decltype(V{} < V{}){1, 0, 3, 2});
+  else return v + __builtin_shuffle(v, decltype(V{} < V{}){1, 0});
+}
+
+// The tooth gap of each queried roller, into the hints from h: the gap of its last query while it
+// is still in that gap's sector (gapOf's two cross products, in vectors), else walked to lane by
+// lane (a roller moves on to the next gap once per tooth).
+template <int W, class V, class Mask>
+CHAINDRIVE_ALWAYS_INLINE void updateGaps(const SprocketModel& sp, RollerHints& hints, int h, Mask query, V bodyX,
+                                         V bodyY) {
+  using simd::load;
+  const auto stays = (load<V>(&hints.fromX[h]) * bodyY - load<V>(&hints.fromY[h]) * bodyX >= 0.0) &
+                     (bodyX * load<V>(&hints.toY[h]) - bodyY * load<V>(&hints.toX[h]) > 0.0);  // (NaN: none)
+  const Mask movedOn = query & ~stays;
+  if (!simd::anySet(movedOn)) return;
+  for (int l = 0; l < W; ++l)
+    if (movedOn[l]) hints.setGap(h + l, sp, roller::gapOf(sp, Vec2{bodyX[l], bodyY[l]}, hints.gap[h + l]));
+}
+
+// The outline's closest point to each queried roller at (lx, ly) in its gap's frame: the seat in
+// vectors, the rest of the outline (flanks, tip: rollers entering or leaving) lane by lane.
+template <int W, class V, class Mask>
+CHAINDRIVE_ALWAYS_INLINE void closestPoints(const ToothGap& gap, Mask query, V lx, V ly, V& distance, V& pointX,
+                                            V& pointY, V& normalX, V& normalY) {
+  const Mask offSeat = query & ~gap.seatHit(lx, ly, distance, pointX, pointY, normalX, normalY);
+  if (!simd::anySet(offSeat)) return;
+  for (int l = 0; l < W; ++l)
+    if (offSeat[l]) {
+      const ProfileHit hit = gap.closestOffSeat(Vec2{lx[l], ly[l]});
+      distance[l] = hit.distance, pointX[l] = hit.point.x, pointY[l] = hit.point.y;
+      normalX[l] = hit.normal.x, normalY[l] = hit.normal.y;
+    }
+}
+
+// The contacts' forces by the compliant law (zero in the lanes not touching): their generalized
+// forces on the even links (a link's two rollers summed), their torque on the sprocket and their
+// power into the sums.
+template <int W, class V, class Mask>
+CHAINDRIVE_ALWAYS_INLINE void rollerForces(const Model& m, Data& d, int j, Mask touching, V gap,
+                                           const roller::World<V>& w, V& normal, V& friction, Sums<W>& sums) {
+  const V zero{};  // (selected, not multiplied: the lanes not queried hold anything, NaN too)
+  V power;
+  contactLaw(m.rollerSprocket, gap, w.vN, w.vT, regularisedSliding(m.frictionRegularization, w.vT), normal, friction,
+             power);
+  const V fx = simd::select(touching, normal * w.normalX + friction * w.tangentX, zero);
+  const V fy = simd::select(touching, normal * w.normalY + friction * w.tangentY, zero);
+  const int part = (j / W) % (4 / W);
+  sums.torque[part] += simd::select(touching, w.rRotorX * fy - w.rRotorY * fx, zero);
+  sums.power[part] += simd::select(touching, power, zero);
+  sums.deepest = simd::select(touching & (gap < sums.deepest), gap, sums.deepest);
+  double per[3][W];
+  for (auto [array, v] : {std::pair{per[0], pairSums(fx)}, {per[1], pairSums(fy)},
+                          {per[2], pairSums(w.rLinkX * fy - w.rLinkY * fx)}})
+    simd::store(array, v);
+  for (int l = 0; l < W && j + l < m.chain.links; l += 2)  // (per[.][l]: link j + l's)
+    for (int k = 0; k < 3; ++k) d.gen[m.linkGen(j + l, k)] += per[k][l];
+}
+
+// The touching lanes' contacts written out from d.contacts[count], in lane order; the new count.
+template <int W, class V, class Mask>
+CHAINDRIVE_ALWAYS_INLINE int listRollerContacts(Data& d, int s, int rotor, int j, Mask touching, V gap,
+                                                const roller::World<V>& w, V normal, V friction, int count) {
+  roller::World<double[W]> world;
+  double gaps[W], fN[W], fT[W];
+  for (auto [array, v] : {std::pair{world.normalX, w.normalX}, {world.normalY, w.normalY},
+                          {world.tangentX, w.tangentX}, {world.tangentY, w.tangentY}, {world.rLinkX, w.rLinkX},
+                          {world.rLinkY, w.rLinkY}, {world.rRotorX, w.rRotorX}, {world.rRotorY, w.rRotorY},
+                          {world.vN, w.vN}, {world.vT, w.vT}, {gaps, gap}, {fN, normal}, {fT, friction}})
+    simd::store(array, v);
+  const int cap = static_cast<int>(d.contacts.size());
+  for (int l = 0; l < W && count < cap; ++l) {
+    if (!touching[l]) continue;
+    const int pin = j + l;  // (the roller's inner link: the even one)
+    ContactPoint& c = d.contacts[count++];
+    roller::setContact<W>(c, pin - pin % 2, pin % 2, s, rotor, gaps[l], world, l);
+    c.fN = fN[l];
+    c.fT = fT[l];
+  }
+  return count;
+}
+
+// Sprocket s against the W rollers (pins) from pin j.
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE int rollerVector(const Model& m, Data& d, int s, int j, double margin, bool forces, int count,
-                                          double& power, Tally<W>& tally) {
+                                          Sums<W>& sums) {
   using V = typename simd::Lanes<W>::V;
+  using Mask = typename simd::Lanes<W>::Mask;
   using simd::load;
-  using simd::store;
   const SprocketModel& sp = m.sprockets[s];
   const LinkArrays& L = d.links;
   const V rollerX = pinLanes<W>(load<V>(&L.rearX[j]), load<V>(&L.frontX[j]));
   const V rollerY = pinLanes<W>(load<V>(&L.rearY[j]), load<V>(&L.frontY[j]));
   const V ax = rollerX - sp.center.x, ay = rollerY - sp.center.y;
-  const auto near = ~(ax * ax + ay * ay > sp.reach2) & lanesBelow<W>(j, m.chain.links);  // (NaN: near)
+  const Mask near = ~(ax * ax + ay * ay > sp.reach2) & lanesBelow<W>(j, m.chain.links);  // (NaN: near)
   if (!simd::anySet(near)) return count;
   // the roller centres in the sprocket's frame; the clearance bound of the last query
   const int r = sp.rotor;
@@ -140,173 +228,122 @@ CHAINDRIVE_ALWAYS_INLINE int rollerVector(const Model& m, Data& d, int s, int j,
   const int h = hints.index(s, j);
   const V free = (load<V>(&hints.clearance[h]) - margin) - roller::kClearanceReserve;
   const V movedX = bodyX - load<V>(&hints.bodyX[h]), movedY = bodyY - load<V>(&hints.bodyY[h]);
-  const auto clear = (free > 0.0) & (movedX * movedX + movedY * movedY < free * free);
-  const auto queryMask = near & ~clear;
-  tally.near -= near;  // (a set lane is -1)
-  tally.skipped -= near & clear;
-  if (!simd::anySet(queryMask)) return count;
-  // the lanes queried, listed (no branch per lane), and the tooth gap of each (a walk from the last
-  // one where it moved on)
-  int query[W], queries = 0;
-  {
-    long long lane[W];
-    std::memcpy(lane, &queryMask, sizeof lane);
-    for (int l = 0; l < W; ++l) {
-      query[queries] = l;
-      queries += lane[l] != 0;
-    }
-  }
-  double body[2][W], gapX[W], gapY[W];
-  store(body[0], bodyX);
-  store(body[1], bodyY);
-  int gap[W] = {};
-  for (int l = 0; l < W; ++l) gapX[l] = 1.0, gapY[l] = 0.0;
-  for (int q = 0; q < queries; ++q) {
-    const int l = query[q];
-    gap[l] = roller::gapOf(sp, Vec2{body[0][l], body[1][l]}, hints.gap[h + l]);
-    gapX[l] = sp.gapDirs[gap[l]].x;
-    gapY[l] = sp.gapDirs[gap[l]].y;
-  }
-  // the closest point of the outline: the seat in vectors, the rest roller by roller
-  double localX[W], localY[W], distance[W], pointX[W], pointY[W], normalX[W], normalY[W];
-  long long seated[W];
-  {
-    V lx, ly, dist, qx, qy, nx, ny;
-    roller::toGapFrame(bodyX, bodyY, load<V>(gapX), load<V>(gapY), lx, ly);
-    const auto within = sp.gap.seatHit(lx, ly, dist, qx, qy, nx, ny);
-    for (auto [array, v] : {std::pair{localX, lx}, {localY, ly}, {distance, dist}, {pointX, qx}, {pointY, qy},
-                            {normalX, nx}, {normalY, ny}})
-      store(array, v);
-    std::memcpy(seated, &within, sizeof seated);
-  }
-  int contact[W], contacts = 0;
-  for (int q = 0; q < queries; ++q) {
-    const int l = query[q];
-    if (!seated[l]) {
-      const ProfileHit hit = sp.gap.closestOffSeat(Vec2{localX[l], localY[l]});
-      distance[l] = hit.distance, pointX[l] = hit.point.x, pointY[l] = hit.point.y;
-      normalX[l] = hit.normal.x, normalY[l] = hit.normal.y;
-    }
-    const double g = distance[l] - m.chain.rollerRadius;
-    hints.gap[h + l] = gap[l];
-    hints.bodyX[h + l] = body[0][l];
-    hints.bodyY[h + l] = body[1][l];
-    hints.clearance[h + l] = g >= margin ? g : -1.0;
-    contact[contacts] = l;
-    contacts += g < margin;
-  }
-  if (contacts == 0) return count;
-  // the contacts in the world frame
+  const Mask clear = (free > 0.0) & (movedX * movedX + movedY * movedY < free * free);
+  const Mask query = near & ~clear;
+  sums.near -= near;  // (a set lane is -1)
+  sums.skipped -= near & clear;
+  if (!simd::anySet(query)) return count;
+  // the queries: each roller's tooth gap, the outline's closest point, the gap, kept as the next hints
+  updateGaps<W>(sp, hints, h, query, bodyX, bodyY);
+  const V gapX = load<V>(&hints.gapX[h]), gapY = load<V>(&hints.gapY[h]);
+  V localX, localY, distance, pointX, pointY, normalX, normalY;
+  roller::toGapFrame(bodyX, bodyY, gapX, gapY, localX, localY);
+  closestPoints<W>(sp.gap, query, localX, localY, distance, pointX, pointY, normalX, normalY);
+  const V gap = distance - m.chain.rollerRadius;
+  simd::store(&hints.bodyX[h], simd::select(query, bodyX, load<V>(&hints.bodyX[h])));
+  simd::store(&hints.bodyY[h], simd::select(query, bodyY, load<V>(&hints.bodyY[h])));
+  simd::store(&hints.clearance[h],
+              simd::select(query, simd::select(gap >= margin, gap, V{} - 1.0), load<V>(&hints.clearance[h])));
+  const Mask touching = query & (gap < margin);
+  if (!simd::anySet(touching)) return count;
+  // the contacts in the world frame, their forces, and the list
   const roller::World<V> w = roller::toWorld(
-      sp.center, cosA, sinA, d.rotorRate[r], load<V>(gapX), load<V>(gapY), load<V>(pointX), load<V>(pointY),
-      load<V>(normalX), load<V>(normalY), rollerX, rollerY,
+      sp.center, cosA, sinA, d.rotorRate[r], gapX, gapY, pointX, pointY, normalX, normalY, rollerX, rollerY,
       pinLanes<W>(load<V>(&L.vRearX[j]), load<V>(&L.vFrontX[j])),
       pinLanes<W>(load<V>(&L.vRearY[j]), load<V>(&L.vFrontY[j])), pinLanes<W>(load<V>(&L.cx[j]), load<V>(&L.cx[j])),
       pinLanes<W>(load<V>(&L.cy[j]), load<V>(&L.cy[j])));
-  roller::World<double[W]> world;
-  for (auto [array, v] : {std::pair{world.normalX, w.normalX}, {world.normalY, w.normalY},
-                          {world.tangentX, w.tangentX}, {world.tangentY, w.tangentY}, {world.rLinkX, w.rLinkX},
-                          {world.rLinkY, w.rLinkY}, {world.rRotorX, w.rRotorX}, {world.rRotorY, w.rRotorY},
-                          {world.vN, w.vN}, {world.vT, w.vT}})
-    store(array, v);
-  // their forces by the compliant law, in vectors
-  double fN[W], fT[W], dissipated[W], damping[3][W];
-  if (forces) {
-    const V gapV = load<V>(distance) - m.chain.rollerRadius;
-    V normal, friction, p, rateX, rateY, rateGamma;
-    contactLaw(m.rollerSprocket, m.frictionRegularization, gapV, w.vN, w.vT, normal, friction, p);
-    contactDampingRates(m, m.rollerSprocket, gapV, normal, w.vT, w.normalX, w.normalY, w.tangentX, w.tangentY,
-                        w.rLinkX, w.rLinkY, rateX, rateY, rateGamma);
-    for (auto [array, v] : {std::pair{fN, normal}, {fT, friction}, {dissipated, p}, {damping[0], rateX},
-                            {damping[1], rateY}, {damping[2], rateGamma}})
-      store(array, v);
-  }
-  const int cap = static_cast<int>(d.contacts.size());
-  for (int k = 0; k < contacts && count < cap; ++k) {
-    const int l = contact[k], pin = j + l, link = pin - pin % 2;  // (the roller's inner link: the even one)
-    ContactPoint& c = d.contacts[count++];
-    roller::setContact<W>(c, link, pin % 2, s, r, distance[l] - m.chain.rollerRadius, world, l);
-    if (!forces) continue;
-    c.fN = fN[l];
-    c.fT = fT[l];
-    addContactGen(m, c, d.gen.data());
-    power += dissipated[l];
-    for (int c3 = 0; c3 < 3; ++c3) d.contactDamping[m.linkGen(link, c3)] += damping[c3][l];
-  }
-  return count;
+  V normal{}, friction{};
+  if (forces) rollerForces<W>(m, d, j, touching, gap, w, normal, friction, sums);
+  if (!d.listsContacts(forces)) return count;
+  return listRollerContacts<W>(d, s, r, j, touching, gap, w, normal, friction, count);
 }
 
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE int rollerLanes(const Model& m, Data& d, int s, double margin, bool forces, int count,
                                          double& power) {
-  Tally<W> tally;
+  Sums<W> sums;
   forEachBlock(d.windows.sprocketWindow(s), d.windows.words, [&](int first) __attribute__((always_inline)) {
     for (int j = first; j < first + SearchWindows::kBlock && j < m.chain.links; j += W)
-      count = rollerVector<W>(m, d, s, j, margin, forces, count, power, tally);
+      count = rollerVector<W>(m, d, s, j, margin, forces, count, sums);
   });
+  double torque[4], dissipated[4];
   for (int l = 0; l < W; ++l) {
-    d.rollerQueries += tally.near[l];
-    d.rollerQueriesSkipped += tally.skipped[l];
+    d.rollerQueries += sums.near[l];
+    d.rollerQueriesSkipped += sums.skipped[l];
+  }
+  for (int h = 0; h < 4 / W; ++h)
+    for (int l = 0; l < W; ++l) {
+      torque[h * W + l] = sums.torque[h][l];
+      dissipated[h * W + l] = sums.power[h][l];
+    }
+  if (forces) {
+    d.gen[m.rotorGen(m.sprockets[s].rotor)] -= simd::reduce4(torque);
+    power += simd::reduce4(dissipated);
+    for (int l = 0; l < W; ++l) d.deepestGap = std::min(d.deepestGap, sums.deepest[l]);
   }
   return count;
 }
 
-// Arc face `face` of guide `guide` (placed: pf) against the W links from link i (those within the
-// guide's bounding circle grown by twice `reach`, and near the face).
+// An arc face's pass over the links, worked out once per face and evaluation: face `face` of guide
+// `guide` placed at pf, the guide turning at `rate`.
+struct FacePass {
+  int guide, face;
+  const PlacedFace& pf;
+  double margin, reach, rate;
+  bool forces, list;
+};
+
+// The arc face against the W links from link i (those within the guide's bounding circle grown by
+// twice `reach`, and near the face).
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE int plateVector(const Model& m, Data& d, int guide, int face, const PlacedFace& pf, int i,
-                                         double margin, double reach, bool forces, int count, double& power) {
+CHAINDRIVE_ALWAYS_INLINE int plateVector(const Model& m, Data& d, const FacePass& f, int i, int count, double& power) {
   using V = typename simd::Lanes<W>::V;
   using simd::load;
   using simd::store;
   const LinkArrays& L = d.links;
+  const PlacedFace& pf = f.pf;
   const V px = load<V>(&L.cx[i]), py = load<V>(&L.cy[i]);
-  const V bx = px - d.guideBoundX[guide], by = py - d.guideBoundY[guide];
-  const auto withinBound = ~(bx * bx + by * by > d.guideReach2[guide]) & lanesBelow<W>(i, m.chain.links);
+  const V bx = px - d.guideBoundX[f.guide], by = py - d.guideBoundY[f.guide];
+  const auto withinBound = ~(bx * bx + by * by > d.guideReach2[f.guide]) & lanesBelow<W>(i, m.chain.links);
   if (!simd::anySet(withinBound)) return count;
-  const auto near = withinBound & arcface::near(pf, px, py, reach);
+  const auto near = withinBound & arcface::near(pf, px, py, f.reach);
   if (!simd::anySet(near)) return count;
   // the plate edge facing the arc (plateEdgeHit) and its contact with it
   const V axisX = load<V>(&L.ex[i]), axisY = load<V>(&L.ey[i]);
   const V side = arcface::side(pf, px, py, axisX, axisY);
   const V normalX = side * -axisY, normalY = side * axisX;
   const double h = m.chain.plateHalfHeight;
-  const V offX = h * normalX, offY = h * normalY;
-  double edge[4][W], pointX[W], pointY[W], gap[W], hitNormalX[W], hitNormalY[W], r[W];
-  long long nearLane[W], within[W];
-  {
-    const V e0x = load<V>(&L.rearX[i]) + offX, e0y = load<V>(&L.rearY[i]) + offY;
-    const V e1x = load<V>(&L.frontX[i]) + offX, e1y = load<V>(&L.frontY[i]) + offY;
-    V qx, qy, g, nx, ny, distance;
-    const auto arc = arcface::hit(pf, e0x, e0y, e1x, e1y, qx, qy, g, nx, ny, distance);
-    for (auto [array, v] : {std::pair{edge[0], e0x}, {edge[1], e0y}, {edge[2], e1x}, {edge[3], e1y}, {pointX, qx},
-                            {pointY, qy}, {gap, g}, {hitNormalX, nx}, {hitNormalY, ny}, {r, distance}})
-      store(array, v);
-    std::memcpy(within, &arc, sizeof within);
-    std::memcpy(nearLane, &near, sizeof nearLane);
-  }
-  double outX[W], outY[W];
-  store(outX, normalX);
-  store(outY, normalY);
-  const GuideModel& g = m.guides[guide];
-  const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
+  const V e0x = load<V>(&L.rearX[i]) + h * normalX, e0y = load<V>(&L.rearY[i]) + h * normalY;
+  const V e1x = load<V>(&L.frontX[i]) + h * normalX, e1y = load<V>(&L.frontY[i]) + h * normalY;
+  V qx, qy, g, distance;
+  const auto arc = arcface::hit(pf, e0x, e0y, e1x, e1y, qx, qy, g, distance);
+  // the lanes touching the arc, or to test against its corners, listed (r <= 0: no contact; beyond
+  // the arc's range the corners touch only an edge within reach of its link's centre, unless
+  // tunnelled through the plate's height)
+  const auto listedMask =
+      near & ~(distance <= 0.0) & ((arc & (g < f.margin)) | (~arc & arcface::cornerNear(pf, px, py, f.reach)));
+  if (!simd::anySet(listedMask)) return count;
+  double edge[4][W], out[2][W], pointX[W], pointY[W], gap[W], r[W];
+  for (auto [array, v] : {std::pair{edge[0], e0x}, {edge[1], e0y}, {edge[2], e1x}, {edge[3], e1y}, {out[0], normalX},
+                          {out[1], normalY}, {pointX, qx}, {pointY, qy}, {gap, g}, {r, distance}})
+    store(array, v);
+  ContactPoint unlisted;
   const int cap = static_cast<int>(d.contacts.size());
-  for (int l = 0; l < W && count < cap; ++l) {
-    if (!nearLane[l] || r[l] <= 0.0) continue;
+  for (int l = 0; l < W && (count < cap || !f.list); ++l) {
+    if (!listedMask[l]) continue;
     FaceHit hit;
-    if (within[l]) {
-      hit.valid = true;
-      hit.point = Vec2{pointX[l], pointY[l]};
-      hit.gap = gap[l];
-      hit.normal = Vec2{hitNormalX[l], hitNormalY[l]};
+    if (arc[l]) {
+      hit = FaceHit{true, gap[l], Vec2{pointX[l], pointY[l]}, arcface::normal(pf, pointX[l], pointY[l], r[l])};
     } else {  // beyond the arc's range: its end corners
       hit = nearerCorner(pf.corner0, pf.corner1, Vec2{edge[0][l], edge[1][l]}, Vec2{edge[2][l], edge[3][l]},
-                         Vec2{outX[l], outY[l]});
+                         Vec2{out[0][l], out[1][l]});
+      if (!hit.valid || hit.gap >= f.margin) continue;
     }
-    if (!hit.valid || hit.gap >= margin) continue;
-    ContactPoint& c = d.contacts[count++];
-    setPlateContact(m, guide, face, i + l, L[i + l], hit, rate, c);
-    if (forces) power += addCompliantForce(m, m.plateGuide, c, d);
+    ContactPoint& c = f.list ? d.contacts[count++] : unlisted;
+    const int link = i + l;
+    setPlateContact(m, f.guide, f.face, link, Vec2{L.cx[link], L.cy[link]}, Vec2{L.vx[link], L.vy[link]}, L.w[link],
+                    hit, f.rate, c);
+    if (f.forces) power += addCompliantForce(m, m.plateGuide, c, d);
   }
   return count;
 }
@@ -314,10 +351,13 @@ CHAINDRIVE_ALWAYS_INLINE int plateVector(const Model& m, Data& d, int guide, int
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE int plateLanes(const Model& m, Data& d, int guide, int face, const PlacedFace& pf,
                                         double margin, double reach, bool forces, int count, double& power) {
+  const int rotor = m.guides[guide].rotor;
+  const FacePass f{guide, face, pf, margin, reach, rotor >= 0 ? d.rotorRate[rotor] : 0.0, forces,
+                   d.listsContacts(forces)};
   forEachBlock(d.windows.guideWindow(static_cast<int>(m.sprockets.size()), guide), d.windows.words,
                [&](int first) __attribute__((always_inline)) {
     for (int i = first; i < first + SearchWindows::kBlock && i < m.chain.links; i += W)
-      count = plateVector<W>(m, d, guide, face, pf, i, margin, reach, forces, count, power);
+      count = plateVector<W>(m, d, f, i, count, power);
   });
   return count;
 }

@@ -102,10 +102,14 @@ struct JointArrays {
 struct RollerHints {
   RollerHints(int sprockets, int pins);
   int index(int sprocket, int pin) const { return sprocket * stride + pin; }
+  /// Hint h's tooth gap (-1: none) and, with it, that gap's axis and its sector's tooth axes.
+  void setGap(int h, const SprocketModel& s, int gapIndex);
   int stride = 0;
-  std::vector<int> gap;            // the tooth gap of its sector (the search's first guess; -1: none)
+  std::vector<int> gap;              // the tooth gap of its sector (the search's first guess; -1: none)
+  std::vector<double> gapX, gapY;    // that gap's axis (sprocket frame; NaN: none) ...
+  std::vector<double> fromX, fromY, toX, toY;  // ... and the tooth axes before and after it
   std::vector<double> bodyX, bodyY;  // its centre in the sprocket's frame ...
-  std::vector<double> clearance;   // ... where its gap was this [m] and it touched nothing (< 0: none)
+  std::vector<double> clearance;     // ... where its gap was this [m] and it touched nothing (< 0: none)
 };
 
 /// The contact search's windows, carried from one evaluation to the next: at the last full scan,
@@ -156,6 +160,11 @@ struct Data {
   // (and, for ideal joints, the journal bearings) and treat them as constraints instead
   bool compliantContacts = true;
   bool jointForces = true;
+  // whether an evaluation with the compliant contacts lists them (contacts, nContacts); off, it
+  // only sums their forces and keeps the deepest penetration (deepestGap): the evaluations of
+  // schemes that read nothing but the derivatives (OdeSystem::setDerivativesOnly)
+  bool listContacts = true;
+  bool listsContacts(bool forces) const { return !forces || listContacts; }  // (forces: compliant)
 
   InputValues inputs;
   LinkArrays links;                           // (links)
@@ -171,12 +180,14 @@ struct Data {
   std::vector<double> guideBoundX, guideBoundY, guideReach2;  // (guides) the bounding circles of the
                                               // contact search: centre at the guide's angle, (radius + reach)^2
   SearchWindows windows;                      // the contact search's (results never depend on them)
-  std::vector<double> contactDamping;         // (3 links) the compliant contacts' damping rates per link
-                                              // coordinate [1/s] (iteration_matrix.h: linkDampingDiagonal)
+  std::vector<double> contactDamping;         // (3 links) work area: the compliant contacts' damping rates
+                                              // per link coordinate [1/s] (iteration_matrix.h: linkDampedKicks)
   RollerHints rollerHints;                    // what the last queries found: search guesses and bounds
                                               // only (results never depend on them)
   long long rollerQueries = 0, rollerQueriesSkipped = 0;  // near rollers, and those the bound cleared
-  int nContacts = 0;
+  int nContacts = 0;                          // listed in contacts
+  double deepestGap = 0.0;                    // [m] of the last evaluation's contacts, listed or not
+                                              // (>= 0 without a penetration)
   std::vector<double> gen;                    // (nGen) generalized forces, laid out as the
                                               // generalized coordinates (model.h)
   // tensioner

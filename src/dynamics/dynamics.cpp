@@ -38,9 +38,28 @@ void JointArrays::setForce(int j, Vec2 f) {
 RollerHints::RollerHints(int sprockets, int pins)
     : stride(pins + LinkArrays::kPadding),
       gap(static_cast<std::size_t>(sprockets * stride), -1),
+      gapX(gap.size(), std::nan("")),
+      gapY(gap.size(), std::nan("")),
+      fromX(gap.size(), std::nan("")),
+      fromY(gap.size(), std::nan("")),
+      toX(gap.size(), std::nan("")),
+      toY(gap.size(), std::nan("")),
       bodyX(gap.size(), 0.0),
       bodyY(gap.size(), 0.0),
       clearance(gap.size(), -1.0) {}
+
+void RollerHints::setGap(int h, const SprocketModel& s, int gapIndex) {
+  gap[h] = gapIndex;
+  const int z = static_cast<int>(s.gapDirs.size());
+  const bool known = gapIndex >= 0 && gapIndex < z;
+  const Vec2 none{std::nan(""), std::nan("")};
+  const Vec2 axis = known ? s.gapDirs[gapIndex] : none;
+  const Vec2 from = known ? s.toothDirs[gapIndex] : none;
+  const Vec2 to = known ? s.toothDirs[gapIndex + 1 == z ? 0 : gapIndex + 1] : none;
+  gapX[h] = axis.x, gapY[h] = axis.y;
+  fromX[h] = from.x, fromY[h] = from.y;
+  toX[h] = to.x, toY[h] = to.y;
+}
 
 SearchWindows::SearchWindows(int links, int sprockets, int guides)
     : blocks((links + kBlock - 1) / kBlock),

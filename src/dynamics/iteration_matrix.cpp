@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dynamics/contact_compliant.h"
+#include "dynamics/link_loops.h"
 
 namespace chaindrive {
 
@@ -82,20 +83,37 @@ void linkIterationMatrix(const Model& m, const Data& d, double a, double b, Cycl
   if (d.compliantContacts) addContacts(m, d, a, b, w);
 }
 
-void linkDampingDiagonal(const Model& m, const Data& d, double* out) {
+void linkDampedKicks(const Model& m, Data& d, double a, bool constantPart, double* kick) {
   const int n = m.chain.links;
   const double c = m.chain.jointDamping, arm2 = 0.25 * m.chain.pitch * m.chain.pitch;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
-  double *x = out + m.linkState(0, Model::kVx), *gamma = out + m.linkState(0, Model::kOmega);  // (x, then y)
-  // the compliant contacts: normal damping and regularised friction at the contact point (summed
-  // as they were found, detectContacts), and the joints: two per link, isotropic without clearance
-  // (the same for every link); along the pins' normal while a bearing with clearance is closed
-  const double* contact = d.compliantContacts ? d.contactDamping.data() : nullptr;
-  const bool isotropic = d.jointForces && m.chain.jointClearance <= 0.0;
-  const double joints = isotropic ? 2.0 * c * invM : 0.0, jointsTurning = isotropic ? 2.0 * c * arm2 * invJ : 0.0;
-  for (int i = 0; i < 2 * n; ++i) x[i] = joints + (contact ? contact[i] : 0.0);
-  for (int i = 0; i < n; ++i) gamma[i] = jointsTurning + (contact ? contact[2 * n + i] : 0.0);
-  for (int j = 0; d.jointForces && !isotropic && j < n; ++j) {
+  double *x = kick + m.linkState(0, Model::kVx), *gamma = kick + m.linkState(0, Model::kOmega);  // (x, then y)
+  // the compliant contacts: normal damping and regularised friction at the contact point, and the
+  // joints: two per link, isotropic without clearance (the same for every link)
+  const double* contact = nullptr;
+  if (!constantPart && d.compliantContacts) {
+    double* rates = d.contactDamping.data();
+    std::fill(rates, rates + 3 * n, 0.0);
+    for (int i = 0; i < d.nContacts; ++i) {
+      const ContactPoint& cp = d.contacts[i];
+      if (cp.gap < 0.0 && cp.fN > 0.0)
+        addContactDamping(m, cp.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide, cp, rates);
+    }
+    contact = rates;
+  }
+  if (d.jointForces && m.chain.jointClearance <= 0.0) {
+    dampedKickLoop(a, 2.0 * c * invM, contact, 2 * n, x, d.vectorLanes);
+    dampedKickLoop(a, 2.0 * c * arm2 * invJ, contact ? contact + 2 * n : nullptr, n, gamma, d.vectorLanes);
+    return;
+  }
+  if (constantPart) {  // (with clearance the joints' damping changes with the state: none is constant)
+    std::fill(x, x + 3 * n, a);
+    return;
+  }
+  // with clearance, along the pins' normal while a bearing is closed: the rates, then the kicks
+  for (int i = 0; i < 2 * n; ++i) x[i] = contact ? contact[i] : 0.0;
+  for (int i = 0; i < n; ++i) gamma[i] = contact ? contact[2 * n + i] : 0.0;
+  for (int j = 0; d.jointForces && j < n; ++j) {
     const int k = j + 1 == n ? 0 : j + 1;
     const Vec2 dpos = d.links[j].front - d.links[k].rear;
     const double dist = norm(dpos);
@@ -108,6 +126,7 @@ void linkDampingDiagonal(const Model& m, const Data& d, double* out) {
       gamma[link] += c * arm2 * (1.0 - along * along) * invJ;
     }
   }
+  for (int i = 0; i < 3 * n; ++i) x[i] = a / (1.0 + a * x[i]);
 }
 
 }  // namespace chaindrive

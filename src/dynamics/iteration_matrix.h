@@ -18,10 +18,14 @@ namespace chaindrive {
 /// the force (the geometric stiffness of joints and contacts).
 void linkIterationMatrix(const Model& m, const Data& d, double a, double b, CyclicBlockTridiagonal3& w);
 
-/// The diagonal of W's damping part over the masses, -diag(dQ/dv) / M: per link coordinate (in the
-/// state's velocity components of `out`, model.h; the other components untouched) what the joints
-/// and compliant contacts held in d damp it by [1/s, >= 0]. The joints' part is that of pins
-/// half a pitch from the centre (the lever arm of every pin).
-void linkDampingDiagonal(const Model& m, const Data& d, double* out);
+/// The diagonal of W's damping part over the masses, -diag(dQ/dv) / M: per link coordinate what
+/// the joints and the compliant contacts held in d damp it by (its rate r [1/s], >= 0), and from it
+/// the kick a / (1 + a r) of the schemes that treat damping implicitly, into the state's velocity
+/// components of `kick` (model.h; the other components untouched). The joints' part is that of
+/// pins half a pitch from the centre (the lever arm of every pin); without joint clearance it is
+/// the same for every link and in every state (constantPart: that part alone, none with
+/// clearance), and a link without damping contacts gets its kick without a division.
+/// (d.contactDamping: its work area.)
+void linkDampedKicks(const Model& m, Data& d, double a, bool constantPart, double* kick);
 
 }  // namespace chaindrive

@@ -104,10 +104,27 @@ CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
   return simd::reduce4(sums);
 }
 
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void dampedKickLanes(double a, double base, const double* extra, int n, double* kick) {
+  using V = typename simd::Lanes<W>::V;
+  const double undamped = a / (1.0 + a * base);
+  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+    const V more = extra ? lanes.load(extra + i) : V{};
+    lanes.store(kick + i, simd::anySet(more != 0.0) ? a / (1.0 + a * (base + more)) : V{} + undamped);
+  });
+}
+
 __attribute__((target("avx2"))) void kinematicsAvx2(const Model& m, Data& d, const double* y) {
   kinematicsLanes<4>(m, d, y);
 }
 void kinematicsSse2(const Model& m, Data& d, const double* y) { kinematicsLanes<2>(m, d, y); }
+
+__attribute__((target("avx2"))) void dampedKickAvx2(double a, double base, const double* extra, int n, double* kick) {
+  dampedKickLanes<4>(a, base, extra, n, kick);
+}
+void dampedKickSse2(double a, double base, const double* extra, int n, double* kick) {
+  dampedKickLanes<2>(a, base, extra, n, kick);
+}
 
 __attribute__((target("avx2"))) double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
 double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
@@ -123,6 +140,11 @@ void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
 
 double jointForcesLoop(const Model& m, Data& d) {
   return d.vectorLanes == 4 ? jointsAvx2(m, d) : jointsSse2(m, d);
+}
+
+void dampedKickLoop(double a, double base, const double* extra, int n, double* kick, int lanes) {
+  if (lanes == 4) dampedKickAvx2(a, base, extra, n, kick);
+  else dampedKickSse2(a, base, extra, n, kick);
 }
 
 }  // namespace chaindrive

@@ -33,4 +33,9 @@ void linkKinematicsLoop(const Model& m, Data& d, const double* y);
 /// the joints' dissipated power (summed in four partial sums: link i in sum i mod 4).
 double jointForcesLoop(const Model& m, Data& d);
 
+/// kick[i] = a / (1 + a (base + extra[i])) for i < n (extra null: none): the kicks of components
+/// damped at rate base plus extra (>= 0), the division only in the vectors where extra is nonzero
+/// (else a / (1 + a base), the same bits). `lanes`: 4 or 2, Data::vectorLanes.
+void dampedKickLoop(double a, double base, const double* extra, int n, double* kick, int lanes);
+
 }  // namespace chaindrive

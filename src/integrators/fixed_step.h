@@ -4,6 +4,7 @@
 // of the current state carried from step to step (one force evaluation per step).
 #pragma once
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -72,26 +73,32 @@ class ComponentSet {
 /// vector instructions (AVX2 where the CPU has it; each element the same operations as one at a
 /// time, without FMA: the same bits on every x86-64 machine).
 void addScaled(double* __restrict y, const double* __restrict x, double a, int n);
+/// v[i] += hh a[i], then x[i] += h v[i], for i < n (x, v and a not overlapping): a kick and the
+/// drift it feeds in one pass, the same operations as addScaled twice.
+void kickAndDrift(double* __restrict x, double* __restrict v, const double* __restrict a, double hh, double h, int n);
 /// y[i] += factor[i] x[i] for i < n.
 void addScaledBy(double* __restrict y, const double* __restrict x, const double* __restrict factor, int n);
-/// factor[i] = a / (1 + a factor[i]) for i < n, in place: the kick of a over a component damped at
-/// the rate factor[i] held on entry (>= 0) with the damping implicit (a over an undamped one:
-/// addScaled's bits).
-void dampedKick(double* factor, double a, int n);
+
 
 /// The components of a system in the schemes' three roles.
 struct ComponentRoles {
   explicit ComponentRoles(const OdeSystem& sys);
   std::vector<std::pair<int, int>> positions, velocities, others;  // (component, partner offset)
+  bool velocitiesArePartners = false;  // every velocity the partner of one position, and no other
 };
 
 inline ComponentRoles::ComponentRoles(const OdeSystem& sys) {
+  std::vector<int> partners;
   for (int i = 0; i < sys.size(); ++i) {
     const int v = sys.velocityOf(i);
-    if (v >= 0) positions.push_back({i, v - i});
+    if (v >= 0) positions.push_back({i, v - i}), partners.push_back(v);
     else if (sys.isVelocity(i)) velocities.push_back({i, 0});
     else others.push_back({i, 0});
   }
+  std::sort(partners.begin(), partners.end());
+  velocitiesArePartners = partners.size() == velocities.size() &&
+                          std::equal(partners.begin(), partners.end(), velocities.begin(),
+                                     [](int p, const std::pair<int, int>& v) { return p == v.first; });
 }
 
 class FixedStepScheme : public Integrator {
@@ -120,7 +127,11 @@ class FixedStepScheme : public Integrator {
 
  protected:
   FixedStepScheme(OdeSystem& sys, const FixedStepOptions& s, const std::string& name, const ComponentRoles& roles)
-      : sys_(sys), positions_(roles.positions), velocities_(roles.velocities), others_(roles.others) {
+      : sys_(sys),
+        positions_(roles.positions),
+        velocities_(roles.velocities),
+        others_(roles.others),
+        velocitiesArePartners_(roles.velocitiesArePartners) {
     if (!(s.step > 0.0)) throw std::invalid_argument(name + " needs a positive fixed step");
     const int n = sys.size();
     y_.assign(n, 0.0);
@@ -148,6 +159,7 @@ class FixedStepScheme : public Integrator {
   std::vector<double> y_, f_, fNew_;  // f_: derivative of y_; fNew_: the step's new one
   ComponentSet positions_;            // partner: the component holding the velocity
   ComponentSet velocities_, others_;
+  bool velocitiesArePartners_;        // (ComponentRoles)
   TimeGrid grid_;     // t0 (the last reset) + k h
   long long k_ = 0;   // grid index of the state y_
   IntegratorStats stats_;

@@ -31,12 +31,17 @@ class OdeSystem {
   /// outside that part). Returns as rhs does.
   virtual bool hasStiffSolve() const { return false; }
   virtual int solveStiff(double /*a*/, double /*b*/, double* /*r*/) noexcept { return -1; }
-  /// For the fixed-step schemes that treat damping implicitly: the damping rate of every velocity
-  /// component, -d(its acceleration)/d(itself) in the system's stiff part at its last rhs
-  /// evaluation, into d (state-sized; its velocity components are written: >= 0 [1/s], 0 outside
-  /// that part).
-  virtual bool hasDampingDiagonal() const { return false; }
-  virtual void dampingDiagonal(double* /*d*/) noexcept {}
+  /// For the fixed-step schemes that treat damping implicitly: the kick a / (1 + a r) of every
+  /// velocity component, r its damping rate, -d(its acceleration)/d(itself) in the system's stiff
+  /// part at its last rhs evaluation (>= 0 [1/s]; 0 outside that part: the kick a), into `kick`
+  /// (state-sized; its velocity components are written). `constantPart`: of the damping only the
+  /// part that is the same in every state (then the kicks need no evaluation).
+  virtual bool hasDampedKicks() const { return false; }
+  virtual void dampedKicks(double /*a*/, bool /*constantPart*/, double* /*kick*/) noexcept {}
+  /// Tells the system that its integrator reads nothing of an evaluation but the derivatives (no
+  /// Jacobian, stiff solve or damped kicks follow rhs) and checks every state it reaches
+  /// (healthy): the system may skip what only those need, and its check of the derivatives.
+  virtual void setDerivativesOnly(bool /*on*/) {}
   /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations; -1 when
   /// df/dy has no such band (the band solver then refuses the system).
   virtual int halfBandwidth() const { return size(); }

@@ -37,7 +37,7 @@ DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, 
 int DriveSystem::rhs(double t, const double* y, double* ydot) noexcept {
   try {
     forwardCompliant(*model_, data_, in_, t, y, ydot);
-    if (!allFinite(ydot, model_->nStates)) {
+    if (!derivativesOnly_ && !allFinite(ydot, model_->nStates)) {  // (else healthy() checks the state)
       lastError_ = {FailureKind::NonFinite, "non-finite derivative"};
       return 1;  // recoverable: the integrator retries with a smaller step
     }
@@ -80,11 +80,11 @@ int DriveSystem::solveStiff(double a, double b, double* r) noexcept {
   return 0;
 }
 
-void DriveSystem::dampingDiagonal(double* d) noexcept {
+void DriveSystem::dampedKicks(double a, bool constantPart, double* kick) noexcept {
   const Model& m = *model_;
   for (const RotorModel& r : m.rotors)
-    if (r.stateRate >= 0) d[r.stateRate] = 0.0;  // (rotors and guides: explicit)
-  linkDampingDiagonal(m, data_, d);
+    if (r.stateRate >= 0) kick[r.stateRate] = a;  // (rotors and guides: explicit)
+  linkDampedKicks(m, data_, a, constantPart, kick);
 }
 
 void DriveSystem::toleranceScales(double* scale) const {
@@ -101,11 +101,23 @@ void DriveSystem::toleranceScales(double* scale) const {
 }
 
 bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
-  // cheap enough for every fixed step: finiteness of the state, and the joint deformations of
-  // the last right-hand-side evaluation (at or next to this state)
+  // cheap enough for every fixed step: finiteness of the state, and the joint deformations and
+  // deepest gap of the last right-hand-side evaluation (at or next to this state)
   const Model& m = *model_;
   if (!finiteState(y, m.nStates, why)) return false;
-  if (jointsWithin(m, data_, health_.blowUpDeformation * m.chain.pitch))
+  const bool jointsOk = jointsWithin(m, data_, health_.blowUpDeformation * m.chain.pitch);
+  if (jointsOk && !(data_.deepestGap < -health_.tunnellingDepth * m.chain.rollerRadius)) return true;
+  // beyond a limit: named from the contacts listed (evaluated again where they were not: the
+  // same positions, so the same gaps) and the joints measured
+  if (!data_.listContacts) {
+    try {
+      data_.listContacts = true;
+      generalizedForces(m, data_, in_, t, y);
+    } catch (...) {
+    }
+    data_.listContacts = false;
+  }
+  if (jointsOk)
     return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.rollerRadius, t, why);
   measureJoints(m, data_);  // some joint is opened too far: which, and by how much
   return chainHealthy(m, health_, [&](int j) { return data_.joints.deformation[j]; }, data_.contacts.data(),

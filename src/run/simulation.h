@@ -47,12 +47,17 @@ class DriveSystem : public OdeSystem {
   int solveStiff(double a, double b, double* r) noexcept override;  // joints and contacts on the links
   // the state is laid out component by component (model.h): a link's position and velocity lie
   // 3 links apart, so df/dy has no narrow band
-  bool hasDampingDiagonal() const override { return true; }
-  void dampingDiagonal(double* d) noexcept override;       // joints and contacts on the links
+  bool hasDampedKicks() const override { return true; }
+  // the links' joints (their constant part, without clearance) and contacts
+  void dampedKicks(double a, bool constantPart, double* kick) noexcept override;
   int halfBandwidth() const override { return -1; }
   void toleranceScales(double* scale) const override;
   int velocityOf(int i) const override { return velocityOf_[i]; }
   bool isVelocity(int i) const override { return isVelocity_[i] != 0; }
+  void setDerivativesOnly(bool on) override {
+    derivativesOnly_ = on;
+    data_.listContacts = !on;
+  }
   bool healthy(double t, const double* y, Failure& why) noexcept override;
   const Failure& lastError() const override { return lastError_; }
   Data& data() { return data_; }
@@ -67,6 +72,7 @@ class DriveSystem : public OdeSystem {
   std::vector<int> velocityOf_;
   std::vector<char> isVelocity_;
   HealthLimits health_;
+  bool derivativesOnly_ = false;           // setDerivativesOnly
   Failure lastError_;
 };
 

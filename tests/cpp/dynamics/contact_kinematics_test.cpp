@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include "assembly/preload.h"
@@ -187,6 +188,29 @@ TEST(ContactKinematics, DeepPenetrationNamesTheDeepestContact) {
   EXPECT_NE(why.reason.find("plate-guide contact of link 7 penetrates by 1.500 mm"), std::string::npos) << why.reason;
 }
 
+// The explicit schemes' evaluations (Data::listContacts off: nothing listed) sum the same forces
+// with the same bits as listed ones, and keep the deepest gap: the contacts' most negative one.
+TEST(ContactKinematics, UnlistedEvaluationSumsTheSameForces) {
+  StartState s;
+  const Model& m = *s.m;
+  Data listed(m), unlisted(m);
+  unlisted.listContacts = false;
+  std::vector<double> a(s.y.size()), b(s.y.size());
+  for (double t : {0.0, 1e-4}) {
+    forwardCompliant(m, listed, *s.in, t, s.y.data(), a.data());
+    forwardCompliant(m, unlisted, *s.in, t, s.y.data(), b.data());
+    ASSERT_GT(listed.nContacts, 20);
+    EXPECT_EQ(unlisted.nContacts, 0);
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << "t = " << t;
+    EXPECT_EQ(std::memcmp(listed.gen.data(), unlisted.gen.data(), listed.gen.size() * sizeof(double)), 0);
+    double deepest = 0.0;
+    for (int k = 0; k < listed.nContacts; ++k) deepest = std::min(deepest, listed.contacts[k].gap);
+    EXPECT_LT(deepest, 0.0);
+    EXPECT_EQ(listed.deepestGap, deepest);
+    EXPECT_EQ(unlisted.deepestGap, deepest);
+  }
+}
+
 // What the roller queries carry from one detection to the next (Data::rollerHints: the tooth
 // gap found, the clearance of a roller that touched nothing) only saves work: along 2 ms of
 // motion, in steps of the real-time step (where the clearance bound skips queries) and of 50 us,
@@ -205,8 +229,9 @@ TEST(ContactKinematics, CarriedHintsChangeNoBit) {
       std::vector<double> y = s.y;
       for (std::size_t i = 0; i < y.size(); ++i) y[i] += t * ydot[i];
       Data fresh(m);
-      for (std::size_t h = 0; h < scrambled.rollerHints.gap.size(); ++h)
-        scrambled.rollerHints.gap[h] = static_cast<int>((h * 7919 + step) % 40);
+      RollerHints& hints = scrambled.rollerHints;
+      for (std::size_t h = 0; h < hints.gap.size(); ++h)
+        hints.setGap(static_cast<int>(h), m.sprockets[h / hints.stride], static_cast<int>((h * 7919 + step) % 40));
       for (Data* d : {&fresh, &carried, &scrambled}) {
         d->inputs = s.d.inputs;
         evaluateKinematics(m, *d, y.data());
