@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "linear/array_loops.h"
+
 namespace chaindrive {
 
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate) {
@@ -28,12 +30,8 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
   const int n = m.chain.links;
   // link weight
   const Vec2 w = m.chain.mass * m.gravity;
-  if (w.x != 0.0 || w.y != 0.0) {
-    double* __restrict genX = &d.gen[m.linkGen(0, Model::kX)];  // (component by component: one
-    double* __restrict genY = &d.gen[m.linkGen(0, Model::kY)];  // vector loop each)
-    for (int i = 0; i < n; ++i) genX[i] += w.x;
-    for (int i = 0; i < n; ++i) genY[i] += w.y;
-  }
+  if (w.x != 0.0) addConstant(&d.gen[m.linkGen(0, Model::kX)], w.x, n);  // (component by component)
+  if (w.y != 0.0) addConstant(&d.gen[m.linkGen(0, Model::kY)], w.y, n);
   TensionerResult t;
   evaluateRotorForces(m, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.gen.data() + m.rotorGen(0), t,
                       powerInput, powerDissipated);

@@ -37,21 +37,29 @@ CHAINDRIVE_ALWAYS_INLINE void forEachBlock(const std::uint64_t* window, int word
       f((64 * w + __builtin_ctzll(bits)) * SearchWindows::kBlock);
 }
 
-// The largest distance by which an element of a (now) moved from b (at the last scan).
+// The largest distances by which a link's centre and its axis moved since the last scan (NaN if
+// any is NaN), in one pass.
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE double largestMove(const double* ax, const double* ay, const double* bx, const double* by,
-                                            int n) {
+CHAINDRIVE_ALWAYS_INLINE void largestMoves(const LinkArrays& L, const SearchWindows& sw, int n, double& centers,
+                                           double& axes) {
   using V = typename simd::Lanes<W>::V;
-  V largest = {}, notANumber = {};
+  using simd::load;
+  V center2 = {}, axis2 = {}, notANumber = {};
   for (int i = 0; i < n; i += W) {  // (the padding: zeros in both)
-    const V dx = simd::load<V>(ax + i) - simd::load<V>(bx + i), dy = simd::load<V>(ay + i) - simd::load<V>(by + i);
-    const V d2 = dx * dx + dy * dy;
-    largest = simd::select(d2 > largest, d2, largest);
-    notANumber = simd::select(d2 != d2, d2, notANumber);
+    const V cx = load<V>(&L.cx[i]) - load<V>(&sw.centerX[i]), cy = load<V>(&L.cy[i]) - load<V>(&sw.centerY[i]);
+    const V ax = load<V>(&L.ex[i]) - load<V>(&sw.axisX[i]), ay = load<V>(&L.ey[i]) - load<V>(&sw.axisY[i]);
+    const V c2 = cx * cx + cy * cy, a2 = ax * ax + ay * ay;
+    center2 = simd::select(c2 > center2, c2, center2);
+    axis2 = simd::select(a2 > axis2, a2, axis2);
+    notANumber = simd::select(c2 + a2 != c2 + a2, c2 + a2, notANumber);
   }
-  double out = 0.0;
-  for (int l = 0; l < W; ++l) out = std::max(out, largest[l]) + notANumber[l] * 0.0;  // (NaN carried)
-  return std::sqrt(out);
+  double c = 0.0, a = 0.0;
+  for (int l = 0; l < W; ++l) {
+    c = std::max(c, center2[l]) + notANumber[l] * 0.0;  // (NaN carried)
+    a = std::max(a, axis2[l]) + notANumber[l] * 0.0;
+  }
+  centers = std::sqrt(c);
+  axes = std::sqrt(a);
 }
 
 // Scans every block against every element: the windows of the elements, the positions now.
@@ -102,8 +110,8 @@ CHAINDRIVE_ALWAYS_INLINE void windowLanes(const Model& m, Data& d, double margin
   const double allowed = SearchWindows::kBand - 1e-9;  // (a nanometre for the rounding of the moves)
   bool keep = sw.valid && sw.margin == margin;
   if (keep) {
-    const double centers = largestMove<W>(L.cx.data(), L.cy.data(), sw.centerX.data(), sw.centerY.data(), n);
-    const double axes = largestMove<W>(L.ex.data(), L.ey.data(), sw.axisX.data(), sw.axisY.data(), n);
+    double centers, axes;
+    largestMoves<W>(L, sw, n, centers, axes);
     keep = centers + 0.5 * m.chain.pitch * axes <= allowed;
     for (std::size_t g = 0; g < m.guides.size() && keep; ++g)
       keep = centers + std::hypot(d.guideBoundX[g] - sw.boundX[g], d.guideBoundY[g] - sw.boundY[g]) <= allowed;

@@ -8,6 +8,7 @@
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/joint_forces.h"
 #include "dynamics/link_loops.h"
+#include "linear/array_loops.h"
 
 namespace chaindrive {
 
@@ -123,8 +124,8 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
   std::copy(y + 3 * n, y + 6 * n, ydot);
   const double* g = d.gen.data();
   double* a = ydot + 3 * n;
-  for (int i = 0; i < 2 * n; ++i) a[i] = g[i] * invM;
-  for (int i = 2 * n; i < 3 * n; ++i) a[i] = g[i] * invJ;
+  scaleInto(a, g, invM, 2 * n);
+  scaleInto(a + 2 * n, g + 2 * n, invJ, n);
   // rotors: the driven one follows the crankshaft input, the free ones their torque over inertia
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
@@ -156,7 +157,9 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
     const ContactPoint& c = d.contacts[i];
     if (c.gap >= 0.0) continue;
     const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
-    e.elastic += law.stiffness * std::pow(-c.gap, law.exponent + 1.0) / (law.exponent + 1.0);
+    const double depth = -c.gap;  // (a linear law's integral without pow: the outputs at every 0.1 ms)
+    e.elastic += law.exponent == 1.0 ? law.stiffness * (depth * depth) / 2.0
+                                     : law.stiffness * std::pow(depth, law.exponent + 1.0) / (law.exponent + 1.0);
   }
   double grav = 0.0;
   e.elastic += bodyPotentialEnergy(m, d, grav);

@@ -35,12 +35,7 @@ double jointTension(const LinkKin& a, const LinkKin& b, Vec2 force) {
 double evaluateJoints(const Model& m, Data& d) { return jointForcesLoop(m, d); }
 
 void measureJoints(const Model& m, Data& d) {
-  const int n = m.chain.links;
-  for (int j = 0; j < n; ++j) {
-    const LinkKin a = d.links[j], b = d.links[j + 1 == n ? 0 : j + 1];
-    d.joints.tension[j] = jointTension(a, b, d.joints.force(j));
-    d.joints.deformation[j] = jointDeformation(m.chain, a, b);
-  }
+  jointMeasuresLoop(m, d, d.joints.tension.data(), d.joints.deformation.data());
 }
 
 bool jointsWithin(const Model& m, const Data& d, double limit) {
@@ -52,11 +47,6 @@ bool jointsWithin(const Model& m, const Data& d, double limit) {
   return within;
 }
 
-double jointEnergy(const Model& m, const Data& d) {
-  const int n = m.chain.links;
-  double e = 0.0;
-  for (int j = 0; j < n; ++j) e += jointForce(m.chain, d.links[j], d.links[j + 1 == n ? 0 : j + 1]).energy;
-  return e;
-}
+double jointEnergy(const Model& m, const Data& d) { return jointMeasuresLoop(m, d, nullptr, nullptr); }
 
 }  // namespace chaindrive

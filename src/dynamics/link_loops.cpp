@@ -49,6 +49,8 @@ CHAINDRIVE_ALWAYS_INLINE void kinematicsLanes(const Model& m, Data& d, const dou
   L.rearY[n] = L.rearY[0];
   L.vRearX[n] = L.vRearX[0];
   L.vRearY[n] = L.vRearY[0];
+  L.ex[n] = L.ex[0];
+  L.ey[n] = L.ey[0];
 }
 
 template <int W>
@@ -104,6 +106,41 @@ CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
   return simd::reduce4(sums);
 }
 
+// Per joint its tension along the links' mean axis and its deformation (into tension and
+// deformation where not null) and its elastic energy, summed: jointTension, jointDeformation and
+// jointForce's energy lane by lane.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE double jointMeasureLanes(const Model& m, const Data& d, double* tension,
+                                                  double* deformation) {
+  using V = typename simd::Lanes<W>::V;
+  using simd::load;
+  using simd::select;
+  const ChainModel& ch = m.chain;
+  const LinkArrays& L = d.links;
+  const double *fx = d.joints.forceX(), *fy = d.joints.forceY();
+  const double halfK = 0.5 * ch.jointStiffness, clearance = ch.jointClearance;
+  V partial[4 / W] = {};  // link i in sum i mod 4
+  simd::forEachVector<V>(ch.links, CHAINDRIVE_LANES_BODY {
+    const V dx = load<V>(&L.frontX[i]) - load<V>(&L.rearX[i + 1]);
+    const V dy = load<V>(&L.frontY[i]) - load<V>(&L.rearY[i + 1]);
+    const V d2 = dx * dx + dy * dy, distance = simd::sqrt(d2);
+    const V pen = select(0.0 < distance - clearance, distance - clearance, V{});
+    partial[(i / W) % (4 / W)] += clearance <= 0.0 ? halfK * d2 : halfK * pen * pen;  // (zero past the last)
+    if (!tension) return;
+    lanes.store(deformation + i, clearance <= 0.0 ? distance : pen);
+    const V ex = load<V>(&L.ex[i]), ey = load<V>(&L.ey[i]);
+    const V ax = ex + load<V>(&L.ex[i + 1]), ay = ey + load<V>(&L.ey[i + 1]);
+    const V axisNorm = simd::sqrt(ax * ax + ay * ay), inverse = 1.0 / axisNorm;
+    const V forceX = lanes.load(fx + i), forceY = lanes.load(fy + i);
+    lanes.store(tension + i, select(axisNorm > 0.0, forceX * (inverse * ax) + forceY * (inverse * ay),
+                                    forceX * ex + forceY * ey));
+  });
+  double sums[4];
+  for (int h = 0; h < 4 / W; ++h)
+    for (int l = 0; l < W; ++l) sums[h * W + l] = partial[h][l];
+  return simd::reduce4(sums);
+}
+
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE void dampedKickLanes(double a, double base, const double* extra, int n, double* kick) {
   using V = typename simd::Lanes<W>::V;
@@ -129,6 +166,14 @@ void dampedKickSse2(double a, double base, const double* extra, int n, double* k
 __attribute__((target("avx2"))) double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
 double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
 
+__attribute__((target("avx2"))) double measuresAvx2(const Model& m, const Data& d, double* tension,
+                                                    double* deformation) {
+  return jointMeasureLanes<4>(m, d, tension, deformation);
+}
+double measuresSse2(const Model& m, const Data& d, double* tension, double* deformation) {
+  return jointMeasureLanes<2>(m, d, tension, deformation);
+}
+
 }  // namespace
 
 int supportedVectorLanes() { return __builtin_cpu_supports("avx2") ? 4 : 2; }
@@ -140,6 +185,10 @@ void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
 
 double jointForcesLoop(const Model& m, Data& d) {
   return d.vectorLanes == 4 ? jointsAvx2(m, d) : jointsSse2(m, d);
+}
+
+double jointMeasuresLoop(const Model& m, const Data& d, double* tension, double* deformation) {
+  return d.vectorLanes == 4 ? measuresAvx2(m, d, tension, deformation) : measuresSse2(m, d, tension, deformation);
 }
 
 void dampedKickLoop(double a, double base, const double* extra, int n, double* kick, int lanes) {

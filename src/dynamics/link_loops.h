@@ -25,13 +25,18 @@ CHAINDRIVE_ALWAYS_INLINE typename simd::Lanes<W>::V pinLanes(typename simd::Lane
 int supportedVectorLanes();
 
 /// Link kinematics from the state y: centres, axes, pins and their velocities (d.links), and the
-/// first link's rear pin copied behind the last one (the joints' loop reads it there).
+/// first link's rear pin and axis copied behind the last one (the joints' loops read them there).
 void linkKinematicsLoop(const Model& m, Data& d, const double* y);
 
 /// The joint forces (d.joints) and from them the links' generalized forces, written (not added)
 /// into the link part of d.gen; the largest squared pin separation into d.jointOpening2. Returns
 /// the joints' dissipated power (summed in four partial sums: link i in sum i mod 4).
 double jointForcesLoop(const Model& m, Data& d);
+
+/// From the kinematics and joint forces in d: per joint its tension along the links' mean axis
+/// and its deformation (into tension and deformation, n each, unless null), and the joints'
+/// elastic energy, returned (summed as the power of jointForcesLoop).
+double jointMeasuresLoop(const Model& m, const Data& d, double* tension, double* deformation);
 
 /// kick[i] = a / (1 + a (base + extra[i])) for i < n (extra null: none): the kicks of components
 /// damped at rate base plus extra (>= 0), the division only in the vectors where extra is nonzero

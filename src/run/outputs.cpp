@@ -44,7 +44,10 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   // method's last step instead of a force law
   d.compliantContacts = rigid == nullptr;
   d.jointForces = rigid == nullptr || rigid->joints == nullptr;
+  const bool listing = d.listContacts;  // (the outputs read the contacts)
+  d.listContacts = true;
   generalizedForces(m, d, in, t, y);
+  d.listContacts = listing;
   if (d.jointForces) measureJoints(m, d);
   if (rigid && rigid->contacts) {
     d.nContacts = 0;

@@ -153,11 +153,11 @@ void Simulation::buildLinkModel(const std::string& joints) {
     auto ri = std::make_unique<RigidIntegrator>(rigid_, contactMethod_, options_.integrator);
     rigidIntegrator_ = ri.get();
     integrator_ = std::move(ri);
+    outData_ = std::make_unique<Data>(*model_);
   } else {
     throw std::invalid_argument("contact method '" + contactMethod_ +
                                 "' is unknown; allowed: compliant, event-driven, time-stepping");
   }
-  outData_ = std::make_unique<Data>(*model_);
   y_.assign(model_->nStates, 0.0);
 }
 
@@ -227,7 +227,12 @@ const Outputs& Simulation::outputs() {
     if (rigid_->idealJoints()) rf.joints = &rigidIntegrator_->jointForces();
     computeOutputs(*model_, *outData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_, &rf);
   } else {
-    computeOutputs(*model_, *outData_, *inputs_, time(), y_.data(), options_.monitoredLink, out_);
+    // in the system's own work area, whose search windows and hints fit this state (four times
+    // cheaper than a cold one at every 0.1 ms); not counted among the integrator's evaluations
+    Data& d = system_->data();
+    const long long evaluations = d.rhsEvaluations;
+    computeOutputs(*model_, d, *inputs_, time(), y_.data(), options_.monitoredLink, out_);
+    d.rhsEvaluations = evaluations;
   }
   return out_;
 }

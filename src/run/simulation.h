@@ -135,7 +135,7 @@ class Simulation {
   std::unique_ptr<span::SpanData> outSpanData_;
   std::unique_ptr<Integrator> integrator_;
   std::vector<ContactPoint> rigidContacts_;
-  std::unique_ptr<Data> outData_;
+  std::unique_ptr<Data> outData_;             // rigid contacts: the outputs' work area
   std::vector<double> y_;
   TimeGrid grid_;
   long long k_ = 0;  // grid index of the state y_

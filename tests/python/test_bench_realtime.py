@@ -18,13 +18,23 @@ def parse(argv):
 def test_timing_leaves_out_the_first_step_and_gives_the_spread():
     # the first step carries the start; 100 steps of 1 ms and one of 3 ms over 0.0102 s simulated
     run = job.SceneRun(record={}, run_in=0, duration=0.0102, cpu=1.0, step_cpus=[0.5] + [1e-3] * 100 + [3e-3])
-    t = realtime.timing(run)
+    t = realtime.timing(run, 10)
     assert t["steps"] == 101
     assert t["median"] == pytest.approx(1e-3)
     assert t["max"] == pytest.approx(3e-3)
     assert t["rtf"] == pytest.approx(0.603 / 0.0102)
+    assert t["cycles"] == 10 and t["by_angle"] == pytest.approx(1.0)  # (the 3 ms step: one cycle of eleven)
     lines = "\n".join(realtime.timing_lines(3000.0, t, 1e-4))
     assert "MISSES" in lines and "max / median 3.00" in lines
+
+
+def test_the_models_own_spread_is_the_spread_of_medians_over_the_crank_angle():
+    # every cycle of 4 steps costs 1, 1, 2, 1 ms, and one cycle has a step of 9 ms (an interruption)
+    cpus = [1e-3, 1e-3, 2e-3, 1e-3] * 6
+    cpus[5] = 9e-3
+    run = job.SceneRun(record={}, run_in=0, duration=0.0024, cpu=1.0, step_cpus=[0.5] + cpus)
+    t = realtime.timing(run, 4)
+    assert t["by_angle"] == pytest.approx(2.0) and t["max"] == pytest.approx(9e-3)
 
 
 def test_accuracy_table_of_a_run_against_itself_meets_every_tolerance():
@@ -55,5 +65,6 @@ def test_short_run_reports_the_real_time_factor(tmp_path, capsys):
     out = tmp_path / "rt.md"
     assert cli.main(["bench-realtime", "--rpm", "6000", "--cycles", "2", "--out", str(out)]) == 0
     report = out.read_text()
-    assert "## 6000 rpm: fixed-verlet at 2.5 us" in report
+    assert "## 6000 rpm: fixed-verlet at 3.125 us" in report
+    assert "the model's own spread" in report
     assert "RTF (CPU s inside fmi2DoStep per simulated s)" in report and "p99 / median" in report

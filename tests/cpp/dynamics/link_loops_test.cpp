@@ -44,6 +44,9 @@ std::vector<double> loopOutputs(const Model& m, const Data& d, double power) {
   }
   out.push_back(power);
   out.push_back(d.jointOpening2);
+  out.insert(out.end(), d.joints.tension.begin(), d.joints.tension.end());
+  out.insert(out.end(), d.joints.deformation.begin(), d.joints.deformation.end());
+  out.push_back(jointEnergy(m, d));
   return out;
 }
 
@@ -57,6 +60,7 @@ std::vector<double> runLoops(const Model& m, const InputSignal& in, const std::v
   std::fill(d.gen.begin() + m.rotorGen(0), d.gen.end(), 0.0);
   double power = evaluateJoints(m, d);
   power += detectContacts(m, d, 0.0, true);
+  measureJoints(m, d);
   return loopOutputs(m, d, power);
 }
 
@@ -71,7 +75,8 @@ void checkLoops(const Model& m) {
   in.evaluate(0.0, d.inputs);
   evaluateKinematics(m, d, y.data());
   const double power = evaluateJoints(m, d);
-  double expectedPower = 0.0, widest = 0.0;
+  measureJoints(m, d);
+  double expectedPower = 0.0, expectedEnergy = 0.0, widest = 0.0;
   for (int i = 0; i < n; ++i) {
     const LinkKin one = linkKinematics(m, y.data(), i), loop = d.links[i];
     for (auto [a, b] : {std::pair{one.c, loop.c}, {one.v, loop.v}, {one.e, loop.e}, {one.rear, loop.rear},
@@ -80,7 +85,11 @@ void checkLoops(const Model& m) {
     const int k = (i + 1) % n;
     const JointResult jr = jointForce(m.chain, one, linkKinematics(m, y.data(), k));
     ASSERT_TRUE(sameBits(jr.force.x, d.joints.force(i).x) && sameBits(jr.force.y, d.joints.force(i).y)) << "joint " << i;
+    ASSERT_TRUE(sameBits(d.joints.tension[i], jointTension(one, linkKinematics(m, y.data(), k), jr.force))) << i;
+    ASSERT_TRUE(sameBits(d.joints.deformation[i], jointDeformation(m.chain, one, linkKinematics(m, y.data(), k))))
+        << i;
     expectedPower += jr.power;
+    expectedEnergy += jr.energy;
     widest = std::max(widest, norm2(one.front - linkKinematics(m, y.data(), k).rear));
   }
   // the links' forces: the front joint's force at the front pin, the rear joint's opposite one at the rear pin
@@ -93,6 +102,7 @@ void checkLoops(const Model& m) {
         << i;
   }
   EXPECT_NEAR(power, expectedPower, 1e-12 * std::fabs(expectedPower));  // (summed in another order)
+  EXPECT_NEAR(jointEnergy(m, d), expectedEnergy, 1e-12 * expectedEnergy);
   EXPECT_EQ(d.jointOpening2, widest);
   // 2 lanes against 4, every output and the padding
   const std::vector<double> two = runLoops(m, in, y, 2);
