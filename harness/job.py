@@ -60,6 +60,9 @@ FIDELITIES = ("link", "span")  # values of the FMU parameter `fidelity`: the ref
 # about 3.5 us; the span model (no link masses: rotors on span springs) runs at 100 us and blows up
 # at 200 us on the default drive, so 20 us keeps a factor 5 and divides the communication step
 SOLVER_STEP = {"link": 2.5e-6, "span": 2e-5}
+# the real-time method of the link fidelity: Verlet with the joints' damping implicit, 28 steps per
+# 0.1 ms communication step (about three quarters of its stable step; docs/benchmark_realtime.md)
+REALTIME_METHOD, REALTIME_STEP = "fixed-verlet-implicit-joint-damping", 1e-4 / 28
 
 class Progress:
     """A text progress bar on stderr."""

@@ -180,6 +180,7 @@ struct Data {
   std::vector<double> guideBoundX, guideBoundY, guideReach2;  // (guides) the bounding circles of the
                                               // contact search: centre at the guide's angle, (radius + reach)^2
   SearchWindows windows;                      // the contact search's (results never depend on them)
+  std::vector<double> dampingWork;            // work area of jointDampingLoop (link_loops.h)
   std::vector<double> contactDamping;         // (3 links) work area: the compliant contacts' damping rates
                                               // per link coordinate [1/s] (iteration_matrix.h: linkDampedKicks)
   RollerHints rollerHints;                    // what the last queries found: search guesses and bounds

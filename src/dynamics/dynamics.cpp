@@ -93,6 +93,7 @@ Data::Data(const Model& m)
   contacts.resize(static_cast<std::size_t>(m.chain.links) * (m.sprockets.size() + faces));
   gen.assign(m.nGen, 0.0);
   contactDamping.assign(3 * static_cast<std::size_t>(m.chain.links), 0.0);
+  dampingWork.assign(5 * static_cast<std::size_t>(m.chain.links + 1 + LinkArrays::kPadding), 0.0);
 }
 
 // Stages 1-5 of dynamics.h, the generalized forces summed into d.gen and the powers kept.

@@ -1,5 +1,7 @@
 #include "dynamics/link_loops.h"
 
+#include <algorithm>
+
 #include "dynamics/joint_forces.h"
 #include "simd.h"
 #include "sincos.h"
@@ -141,6 +143,49 @@ CHAINDRIVE_ALWAYS_INLINE double jointMeasureLanes(const Model& m, const Data& d,
   return simd::reduce4(sums);
 }
 
+// jointDampingOffDiagonalLoop: the pins' velocities under the field w = accel (levers of half a
+// pitch along the link axes), each joint's force -c (front pin - rear pin of the next link), then
+// per link the forces and torques of its two joints over the masses, F / M = -C w, and
+// w += a (F / M + D w).
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void jointDampingLanes(const Model& m, Data& d, double a, double* accel) {
+  using V = typename simd::Lanes<W>::V;
+  using simd::load;
+  const int n = m.chain.links, stride = n + 1 + LinkArrays::kPadding;
+  const LinkArrays& L = d.links;
+  const double c = m.chain.jointDamping, hp = 0.5 * m.chain.pitch;
+  const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
+  const double diagonalX = 2.0 * c * invM, diagonalGamma = 2.0 * c * hp * hp * invJ;  // (linkDampedKicks')
+  // w copied with the first link behind the last, and the forces with the last joint's in front
+  double *wx = d.dampingWork.data(), *wy = wx + stride, *ww = wy + stride, *fx = ww + stride + 1, *fy = fx + stride;
+  for (int k = 0; k < 3; ++k) {
+    double* to = wx + k * stride;
+    std::copy(accel + k * n, accel + (k + 1) * n, to);
+    to[n] = to[0];
+  }
+  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+    const V frontX = hp * load<V>(&L.ex[i]), frontY = hp * load<V>(&L.ey[i]);  // levers: front, then rear
+    const V rearX = -hp * load<V>(&L.ex[i + 1]), rearY = -hp * load<V>(&L.ey[i + 1]);
+    const V omega = load<V>(ww + i), next = load<V>(ww + i + 1);
+    const V dvx = (load<V>(wx + i) - omega * frontY) - (load<V>(wx + i + 1) - next * rearY);
+    const V dvy = (load<V>(wy + i) + omega * frontX) - (load<V>(wy + i + 1) + next * rearX);
+    lanes.store(fx + i, -c * dvx);
+    lanes.store(fy + i, -c * dvy);
+  });
+  fx[-1] = fx[n - 1];
+  fy[-1] = fy[n - 1];
+  double *ax = accel, *ay = accel + n, *alpha = accel + 2 * n;
+  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+    const V frontX = hp * load<V>(&L.ex[i]), frontY = hp * load<V>(&L.ey[i]);
+    const V fFrontX = load<V>(fx + i), fFrontY = load<V>(fy + i), fRearX = load<V>(fx + i - 1), fRearY = load<V>(fy + i - 1);
+    const V torque = (frontX * fFrontY - frontY * fFrontX) + (frontX * fRearY - frontY * fRearX);
+    const V x = lanes.load(ax + i), y = lanes.load(ay + i), g = lanes.load(alpha + i);
+    lanes.store(ax + i, x + a * ((fFrontX - fRearX) * invM + diagonalX * x));
+    lanes.store(ay + i, y + a * ((fFrontY - fRearY) * invM + diagonalX * y));
+    lanes.store(alpha + i, g + a * (torque * invJ + diagonalGamma * g));
+  });
+}
+
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE void dampedKickLanes(double a, double base, const double* extra, int n, double* kick) {
   using V = typename simd::Lanes<W>::V;
@@ -166,6 +211,11 @@ void dampedKickSse2(double a, double base, const double* extra, int n, double* k
 __attribute__((target("avx2"))) double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
 double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
 
+__attribute__((target("avx2"))) void dampingAvx2(const Model& m, Data& d, double a, double* accel) {
+  jointDampingLanes<4>(m, d, a, accel);
+}
+void dampingSse2(const Model& m, Data& d, double a, double* accel) { jointDampingLanes<2>(m, d, a, accel); }
+
 __attribute__((target("avx2"))) double measuresAvx2(const Model& m, const Data& d, double* tension,
                                                     double* deformation) {
   return jointMeasureLanes<4>(m, d, tension, deformation);
@@ -185,6 +235,11 @@ void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
 
 double jointForcesLoop(const Model& m, Data& d) {
   return d.vectorLanes == 4 ? jointsAvx2(m, d) : jointsSse2(m, d);
+}
+
+void jointDampingOffDiagonalLoop(const Model& m, Data& d, double a, double* accel) {
+  if (d.vectorLanes == 4) dampingAvx2(m, d, a, accel);
+  else dampingSse2(m, d, a, accel);
 }
 
 double jointMeasuresLoop(const Model& m, const Data& d, double* tension, double* deformation) {

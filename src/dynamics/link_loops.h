@@ -38,6 +38,12 @@ double jointForcesLoop(const Model& m, Data& d);
 /// elastic energy, returned (summed as the power of jointForcesLoop).
 double jointMeasuresLoop(const Model& m, const Data& d, double* tension, double* deformation);
 
+/// The joints' damping without clearance, C = M^-1 J^T c J (the links' masses M, the pins' levers
+/// half a pitch along the link axes in d), applied off its diagonal D to the link accelerations
+/// `accel` (3n: ax, ay, alpha of every link, the state's layout), in place:
+/// accel -= a (C - D) accel. (C is linear: applied to accelerations here, not velocities.)
+void jointDampingOffDiagonalLoop(const Model& m, Data& d, double a, double* accel);
+
 /// kick[i] = a / (1 + a (base + extra[i])) for i < n (extra null: none): the kicks of components
 /// damped at rate base plus extra (>= 0), the division only in the vectors where extra is nonzero
 /// (else a / (1 + a base), the same bits). `lanes`: 4 or 2, Data::vectorLanes.

@@ -16,6 +16,15 @@ __attribute__((target_clones("avx2", "default"))) void kickAndDrift(double* __re
   }
 }
 
+__attribute__((target_clones("avx2", "default"))) void kickAndDriftBy(double* __restrict x, double* __restrict v,
+                                                                      const double* __restrict a,
+                                                                      const double* __restrict factor, double h, int n) {
+  for (int i = 0; i < n; ++i) {
+    v[i] += factor[i] * a[i];
+    x[i] += h * v[i];
+  }
+}
+
 __attribute__((target_clones("avx2", "default"))) void addScaledBy(double* __restrict y, const double* __restrict x,
                                                                    const double* __restrict factor, int n) {
   for (int i = 0; i < n; ++i) y[i] += factor[i] * x[i];

@@ -76,6 +76,9 @@ void addScaled(double* __restrict y, const double* __restrict x, double a, int n
 /// v[i] += hh a[i], then x[i] += h v[i], for i < n (x, v and a not overlapping): a kick and the
 /// drift it feeds in one pass, the same operations as addScaled twice.
 void kickAndDrift(double* __restrict x, double* __restrict v, const double* __restrict a, double hh, double h, int n);
+/// The same with a factor per element: v[i] += factor[i] a[i], then x[i] += h v[i].
+void kickAndDriftBy(double* __restrict x, double* __restrict v, const double* __restrict a,
+                    const double* __restrict factor, double h, int n);
 /// y[i] += factor[i] x[i] for i < n.
 void addScaledBy(double* __restrict y, const double* __restrict x, const double* __restrict factor, int n);
 

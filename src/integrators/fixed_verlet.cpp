@@ -5,15 +5,24 @@
 // scheme for real-time use. Components without a velocity state (prescribed angles, energy
 // accumulators) use the trapezoidal rule on their derivatives.
 //
-// fixed-verlet-implicit-damping: the same with each kick linearly implicit in the damping of its
-// own component (OdeSystem::dampedKicks, r = -d(acceleration)/d(velocity) in the stiff part): v +=
-// h/2 a / (1 + h/2 r), i.e. v+ = v + h/2 (a + r v - r v+) with the damping at the new velocity. Explicit damping shrinks Verlet's stable step from 2 / omega to about
-// 2 (sqrt(1 + zeta^2) - zeta) / omega (zeta: the mode's damping ratio); on the chain drive, whose
-// stiffest modes are the links turning and shifting against their joints and seated rollers
-// (about 4.9e5 rad/s, damped by the joints and the contacts' Hunt-Crossley and regularised
-// friction terms), that is 3.2 instead of about 4 us. The damping treated implicitly, the step
-// grows towards the undamped limit; off the diagonal (a link's damping through its neighbours)
-// it stays explicit. First order in the damping, as Verlet is.
+// The kicks with the damping implicit. Explicit damping shrinks Verlet's stable step from
+// 2 / omega to about 2 (sqrt(1 + zeta^2) - zeta) / omega (zeta: the mode's damping ratio); on the
+// chain drive, whose stiffest modes are neighbouring links turning and shifting against each
+// other through their joints and seated rollers (about 4.9e5 rad/s, zeta about 0.3 from the
+// joints' dampers), that is 3.2 instead of 4 us. The implicit kick v+ = v + h/2 (I + h/2 C)^-1 a
+// (C: the damping over the masses, a: the accelerations at v) lifts that limit; the variants
+// approximate its solve:
+// - fixed-verlet-implicit-joint-damping (the real-time method): the joints' damping, constant
+//   without clearance, by one Jacobi sweep from h/2 a: v+ = v + h/2 (I + h/2 D)^-1 (a - h/2 (C - D) a)
+//   (OdeSystem::dampedKicks for the diagonal D, dampOffDiagonal for the rest). Exact to first order
+//   in h C for every motion, the rigid ones (C a = 0) unchanged; on neighbours moving against
+//   each other the kick shrinks as the implicit one does, which keeps the step stable beyond
+//   4.5 us on the default drive (plain Verlet: 3.2 us) with the cycle statistics within the
+//   reference's scatter (docs/benchmark_realtime.md). The contacts' damping stays explicit.
+// - fixed-verlet-implicit-damping: the joints' and contacts' damping by its diagonal alone,
+//   v+ = v + h/2 (I + h/2 D)^-1 a, re-evaluated every step. It slows every motion's kick by
+//   1 / (1 + h/2 D), rigid ones too, the tension waves of the spans included: stable to 3.8 us
+//   but with the cycle statistics off (a result kept for the study's chart).
 #include <string>
 
 #include "integrators/fixed_step.h"
@@ -31,26 +40,31 @@ class FixedVerlet : public FixedStepScheme {
       throw std::invalid_argument(nameOf(damping) + " needs a system with damped kicks: the link fidelity with "
                                   "compliant contacts");
     kick_.assign(damping != VerletDamping::Explicit ? y_.size() : 0, 0.0);
-    sys.setDerivativesOnly(damping == VerletDamping::Explicit);
+    sys.setDerivativesOnly(damping != VerletDamping::All);  // (All reads each evaluation's damping rates)
   }
   std::string name() const override { return nameOf(damping_); }
 
   void reset(double t0, const double* y0) override {
     FixedStepScheme::reset(t0, y0);
-    if (damping_ != VerletDamping::Explicit) sys_.dampedKicks(0.5 * grid_.unit, damping_ == VerletDamping::Constant, kick_.data());
+    if (damping_ == VerletDamping::Explicit) return;
+    sys_.dampedKicks(0.5 * grid_.unit, damping_ == VerletDamping::Joints, kick_.data());
+    if (damping_ == VerletDamping::Joints && !sys_.dampOffDiagonal(0.5 * grid_.unit, f_.data()))
+      throw std::invalid_argument(nameOf(damping_) + " needs a constant damping (joints without clearance)");
   }
 
  private:
   static std::string nameOf(VerletDamping d) {
-    return d == VerletDamping::Explicit   ? "fixed-verlet"
-           : d == VerletDamping::Constant ? "fixed-verlet-implicit-constant-damping"
-                                          : "fixed-verlet-implicit-damping";
+    return d == VerletDamping::Explicit ? "fixed-verlet"
+           : d == VerletDamping::Joints ? "fixed-verlet-implicit-joint-damping"
+                                        : "fixed-verlet-implicit-damping";
   }
 
   // One step of length h ending at the grid time tNext (formed from the index, not accumulated):
   //   v_1/2 = v + h/2 a(t, x, v),   x+ = x + h v_1/2,   v+ = v_1/2 + h/2 a(t + h, x+, v_1/2);
   //   other components (no velocity state): y+ = y + h/2 (f + f+)
-  // (with implicit damping each kick's h/2 is h/2 / (1 + h/2 r) of its evaluation's rates r)
+  // (with the damping implicit each kick's h/2 is h/2 / (1 + h/2 r) per component, r the damping
+  // rates: constant for the joints' variant, whose accelerations are swept off the diagonal once
+  // after every evaluation, the evaluation's own for All)
   void step(double h, double tNext) override {
     double* y = y_.data();
     const double hh = 0.5 * h;
@@ -58,6 +72,9 @@ class FixedVerlet : public FixedStepScheme {
     const double* fNew = fNew_.data();
     if (damping_ == VerletDamping::Explicit && velocitiesArePartners_) {  // (the same, in one pass)
       positions_.forEachRun([&](int i, int v, int n) { kickAndDrift(y + i, y + v, f + v, hh, h, n); });
+    } else if (velocitiesArePartners_) {
+      const double* factor = kick_.data();
+      positions_.forEachRun([&](int i, int v, int n) { kickAndDriftBy(y + i, y + v, f + v, factor + v, h, n); });
     } else {
       kick(y, f, hh);
       positions_.forEachRun([&](int i, int v, int n) { addScaled(y + i, y + v, h, n); });  // drift
@@ -66,6 +83,7 @@ class FixedVerlet : public FixedStepScheme {
     others_.forEachRun([&](int i, int, int n) { addScaled(y + i, f + i, h, n); });
     check(tNext, sys_.rhs(tNext, y, fNew_.data()), "right-hand side failed: ");
     if (damping_ == VerletDamping::All) sys_.dampedKicks(hh, false, kick_.data());
+    if (damping_ == VerletDamping::Joints) sys_.dampOffDiagonal(hh, fNew_.data());
     kick(y, fNew, hh);
     others_.forEach([&](int i, int) { y[i] += hh * (fNew[i] - f[i]); });  // trapezoidal
     finishStep(h, tNext);

@@ -9,7 +9,7 @@ std::vector<std::string> integratorNames() {
   return {"cvode-bdf-klu",  "cvode-bdf-band",
           "arkode-erk",     "arkode-erk-fixed",
           "fixed-verlet",   "fixed-verlet-implicit-damping",
-          "fixed-verlet-implicit-constant-damping",
+          "fixed-verlet-implicit-joint-damping",
           "fixed-newmark"};
 }
 
@@ -20,8 +20,8 @@ std::unique_ptr<Integrator> makeIntegrator(OdeSystem& sys, const IntegratorSetti
   if (s.method == "arkode-erk-fixed") return makeArkodeErk(sys, s.adaptive, s.erk, &s.fixed);
   if (s.method == "fixed-verlet") return makeFixedVerlet(sys, s.fixed, VerletDamping::Explicit);
   if (s.method == "fixed-verlet-implicit-damping") return makeFixedVerlet(sys, s.fixed, VerletDamping::All);
-  if (s.method == "fixed-verlet-implicit-constant-damping")
-    return makeFixedVerlet(sys, s.fixed, VerletDamping::Constant);
+  if (s.method == "fixed-verlet-implicit-joint-damping")
+    return makeFixedVerlet(sys, s.fixed, VerletDamping::Joints);
   if (s.method == "fixed-newmark") return makeFixedNewmark(sys, s.fixed, s.newmark);
   std::string known;
   for (const auto& n : integratorNames()) known += (known.empty() ? "" : ", ") + n;

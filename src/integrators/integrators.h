@@ -13,9 +13,10 @@ std::unique_ptr<Integrator> makeCvodeBdf(OdeSystem& sys, const AdaptiveOptions& 
 /// step limits and step count).
 std::unique_ptr<Integrator> makeArkodeErk(OdeSystem& sys, const AdaptiveOptions& adaptive, const ErkOptions& erk,
                                           const FixedStepOptions* fixed);
-/// fixed-verlet, with the damping explicit or implicit (fixed_verlet.cpp): all of it
-/// (fixed-verlet-implicit-damping) or its constant part (fixed-verlet-implicit-constant-damping).
-enum class VerletDamping { Explicit, Constant, All };
+/// fixed-verlet, with the damping explicit or implicit (fixed_verlet.cpp): the joints' by one
+/// Jacobi sweep (fixed-verlet-implicit-joint-damping), or the diagonal of the joints' and contacts'
+/// (fixed-verlet-implicit-damping).
+enum class VerletDamping { Explicit, Joints, All };
 std::unique_ptr<Integrator> makeFixedVerlet(OdeSystem& sys, const FixedStepOptions& fixed, VerletDamping damping);
 std::unique_ptr<Integrator> makeFixedNewmark(OdeSystem& sys, const FixedStepOptions& fixed,
                                              const NewmarkOptions& newmark);

@@ -38,9 +38,17 @@ class OdeSystem {
   /// part that is the same in every state (then the kicks need no evaluation).
   virtual bool hasDampedKicks() const { return false; }
   virtual void dampedKicks(double /*a*/, bool /*constantPart*/, double* /*kick*/) noexcept {}
+  /// With the kicks of the constant part (dampedKicks, constantPart), the rest of that part made
+  /// implicit too, by one Jacobi sweep: replaces the accelerations in ydot (an evaluation's
+  /// derivative) by ydot - a A_off ydot, A_off the constant damping's matrix (over the masses)
+  /// less its diagonal. The kick a / (1 + a r) of these is then exact for a motion the damping
+  /// does not resist (a rigid one) and damps the motions it resists most (neighbours against each
+  /// other) as the implicit kick does, to first order. False where there is no constant part.
+  virtual bool dampOffDiagonal(double /*a*/, double* /*ydot*/) noexcept { return false; }
   /// Tells the system that its integrator reads nothing of an evaluation but the derivatives (no
-  /// Jacobian, stiff solve or damped kicks follow rhs) and checks every state it reaches
-  /// (healthy): the system may skip what only those need, and its check of the derivatives.
+  /// Jacobian, stiff solve or kicks damped at the evaluation's rates follow rhs) and checks every
+  /// state it reaches (healthy): the system may skip what only those need, and its check of the
+  /// derivatives.
   virtual void setDerivativesOnly(bool /*on*/) {}
   /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations; -1 when
   /// df/dy has no such band (the band solver then refuses the system).

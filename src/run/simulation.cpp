@@ -7,6 +7,7 @@
 #include "dynamics/health.h"
 #include "dynamics/iteration_matrix.h"
 #include "dynamics/joint_forces.h"
+#include "dynamics/link_loops.h"
 #include "span/span_outputs.h"
 
 namespace chaindrive {
@@ -85,6 +86,13 @@ void DriveSystem::dampedKicks(double a, bool constantPart, double* kick) noexcep
   for (const RotorModel& r : m.rotors)
     if (r.stateRate >= 0) kick[r.stateRate] = a;  // (rotors and guides: explicit)
   linkDampedKicks(m, data_, a, constantPart, kick);
+}
+
+bool DriveSystem::dampOffDiagonal(double a, double* ydot) noexcept {
+  const Model& m = *model_;
+  if (m.chain.jointClearance > 0.0 || !data_.jointForces) return false;  // (the joints' damping not constant)
+  jointDampingOffDiagonalLoop(m, data_, a, ydot + m.linkState(0, Model::kVx));  // (the links' accelerations)
+  return true;
 }
 
 void DriveSystem::toleranceScales(double* scale) const {

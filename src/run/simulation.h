@@ -50,6 +50,7 @@ class DriveSystem : public OdeSystem {
   bool hasDampedKicks() const override { return true; }
   // the links' joints (their constant part, without clearance) and contacts
   void dampedKicks(double a, bool constantPart, double* kick) noexcept override;
+  bool dampOffDiagonal(double a, double* ydot) noexcept override;
   int halfBandwidth() const override { return -1; }
   void toleranceScales(double* scale) const override;
   int velocityOf(int i) const override { return velocityOf_[i]; }

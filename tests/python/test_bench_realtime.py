@@ -65,6 +65,6 @@ def test_short_run_reports_the_real_time_factor(tmp_path, capsys):
     out = tmp_path / "rt.md"
     assert cli.main(["bench-realtime", "--rpm", "6000", "--cycles", "2", "--out", str(out)]) == 0
     report = out.read_text()
-    assert "## 6000 rpm: fixed-verlet at 3.125 us" in report
+    assert "## 6000 rpm: fixed-verlet-implicit-joint-damping at 3.57143 us" in report
     assert "the model's own spread" in report
     assert "RTF (CPU s inside fmi2DoStep per simulated s)" in report and "p99 / median" in report

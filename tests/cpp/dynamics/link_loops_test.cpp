@@ -61,7 +61,13 @@ std::vector<double> runLoops(const Model& m, const InputSignal& in, const std::v
   double power = evaluateJoints(m, d);
   power += detectContacts(m, d, 0.0, true);
   measureJoints(m, d);
-  return loopOutputs(m, d, power);
+  std::vector<double> out = loopOutputs(m, d, power);
+  // the joints' damping off its diagonal, applied to the link velocities as a field
+  const auto velocities = y.begin() + m.linkState(0, Model::kVx);
+  std::vector<double> field(velocities, velocities + 3 * m.chain.links);
+  jointDampingOffDiagonalLoop(m, d, 1.7e-6, field.data());
+  out.insert(out.end(), field.begin(), field.end());
+  return out;
 }
 
 // The loops against the formulas of one link and one joint at a time, and 2 lanes against 4.

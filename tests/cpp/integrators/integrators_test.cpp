@@ -154,8 +154,9 @@ TEST(Integrators, MethodsAgreeOnAShortRun) {
 TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
   if (!chaindrive::test::allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc";
   auto m = defaultModel();
-  for (const auto& [fidelity, method] : {std::pair<const char*, const char*>{"link", "fixed-verlet"},
-                                         {"span", "fixed-verlet"}, {"link", "fixed-newmark"}}) {
+  for (const auto& [fidelity, method] :
+       {std::pair<const char*, const char*>{"link", "fixed-verlet"}, {"span", "fixed-verlet"}, {"link", "fixed-newmark"},
+        {"link", "fixed-verlet-implicit-joint-damping"}, {"link", "fixed-verlet-implicit-damping"}}) {
     SimulationOptions opt;
     opt.fidelity = fidelity;
     opt.integrator.method = method;
