@@ -198,7 +198,7 @@ int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink
 double detectContacts(const Model& m, Data& d, double margin, bool forces) {
   // a link is near a guide when its centre lies within the guide's bounding circle grown by twice
   // the reach of a plate edge from its link's centre
-  const double reachLink = std::hypot(0.5 * m.chain.pitch, m.chain.plateHalfHeight) + std::fabs(margin);
+  const double reachLink = norm(Vec2{0.5 * m.chain.pitch, m.chain.plateHalfHeight}) + std::fabs(margin);
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
     const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;

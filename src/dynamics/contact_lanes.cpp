@@ -114,7 +114,7 @@ CHAINDRIVE_ALWAYS_INLINE void windowLanes(const Model& m, Data& d, double margin
     largestMoves<W>(L, sw, n, centers, axes);
     keep = centers + 0.5 * m.chain.pitch * axes <= allowed;
     for (std::size_t g = 0; g < m.guides.size() && keep; ++g)
-      keep = centers + std::hypot(d.guideBoundX[g] - sw.boundX[g], d.guideBoundY[g] - sw.boundY[g]) <= allowed;
+      keep = centers + norm(Vec2{d.guideBoundX[g] - sw.boundX[g], d.guideBoundY[g] - sw.boundY[g]}) <= allowed;
   }
   if (!keep) scanWindows<W>(m, d, margin);
 }
