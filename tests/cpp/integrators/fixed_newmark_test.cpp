@@ -102,19 +102,11 @@ TEST(FixedNewmark, RefusesASystemWithoutStiffPartAndGammaOutOfRange) {
 namespace {
 
 std::vector<double> driveRun(double step, double gamma, double tEnd) {
-  auto m = defaultModel();
-  SimulationOptions opt;
-  opt.integrator.method = "fixed-newmark";
-  opt.integrator.fixed.step = step;
-  opt.integrator.newmark.gamma = gamma;
-  Simulation sim(m, opt, constantLoads(*m, 3000.0));
-  sim.start(0.0);
-  std::vector<double> tension;
-  for (int k = 1; k * 1e-4 <= tEnd + 1e-12; ++k) {
-    sim.advanceTo(1e-4 * k);
-    tension.push_back(sim.outputs().tensionerForce);
-  }
-  return tension;
+  IntegratorSettings s;
+  s.method = "fixed-newmark";
+  s.fixed.step = step;
+  s.newmark.gamma = gamma;
+  return chaindrive::test::tensionerRun(defaultModel(), s, tEnd);
 }
 
 }  // namespace

@@ -1,12 +1,18 @@
 // fixed-verlet with the damping implicit: the joints' by one Jacobi sweep
 // (fixed-verlet-implicit-joint-damping) keeps a motion the joints do not resist exactly as plain
 // Verlet kicks it and shrinks the kick of neighbours moving against each other; on the drive it
-// runs at a step where plain Verlet blows up, repeats bit for bit, and is refused where the
-// joints' damping is not constant (clearance) or there are no joints (span fidelity).
+// runs at a step where plain Verlet blows up, repeats bit for bit, gives the same bits with the
+// per-link loops in 2 lanes (SSE2, every x86-64 CPU) and in 4 (AVX2), stops with a named failure at
+// a step beyond its limit, and is refused where the joints' damping is not constant (clearance) or
+// there are no joints (span fidelity).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <utility>
 
+#include "dynamics/link_loops.h"
+#include "integrators/integrators.h"
 #include "run/simulation.h"
 #include "test_util.h"
 
@@ -18,17 +24,10 @@ namespace {
 // The tensioner force every 0.1 ms of a 3000 rpm run from the preload.
 std::vector<double> tensionerRun(const std::shared_ptr<const Model>& m, const std::string& method, double step,
                                  double tEnd) {
-  SimulationOptions opt;
-  opt.integrator.method = method;
-  opt.integrator.fixed.step = step;
-  Simulation sim(m, opt, constantLoads(*m, 3000.0));
-  sim.start(0.0);
-  std::vector<double> tension;
-  for (int k = 1; k * 1e-4 <= tEnd + 1e-12; ++k) {
-    sim.advanceTo(1e-4 * k);
-    tension.push_back(sim.outputs().tensionerForce);
-  }
-  return tension;
+  IntegratorSettings s;
+  s.method = method;
+  s.fixed.step = step;
+  return chaindrive::test::tensionerRun(m, s, tEnd);
 }
 
 // The kicks of h/2 a system's damped-kick interface gives for link accelerations `field` (x, y,
@@ -50,6 +49,23 @@ std::vector<double> jointDampedKicks(const std::vector<double>& field, double hh
     out[i] = kick[s] * ydot[s];
   }
   return out;
+}
+
+// The state after 10 ms of `method` at `step` from a running state at 3000 rpm, with the per-link
+// loops and the contact search in `lanes` lanes.
+std::vector<double> stateAfter(const std::string& method, double step, int lanes) {
+  auto m = defaultModel();
+  auto in = constantLoads(*m, 3000.0);
+  DriveSystem sys(m, *in, HealthLimits{});
+  sys.data().vectorLanes = lanes;
+  std::vector<double> y = runningState(*m, *in);
+  IntegratorSettings s;
+  s.method = method;
+  s.fixed.step = step;
+  auto integrator = makeIntegrator(sys, s);
+  integrator->reset(0.0, y.data());
+  integrator->advance(0.01, y.data());
+  return y;
 }
 
 }  // namespace
@@ -92,6 +108,31 @@ TEST(FixedVerlet, ImplicitJointDampingStableWherePlainVerletBlowsUp) {
   ASSERT_EQ(a.size(), 200u);
   for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << "sample " << k;
   for (double f : a) EXPECT_TRUE(f > 0.0 && f < 1e3) << f;
+}
+
+// The chaotic dynamics turns a difference in the last bit into a visible one within milliseconds:
+// 10 ms of the real-time method and of plain Verlet, with 2 lanes and with 4, end in the same bits
+// (what makes a run on a CPU without AVX2 repeat this one).
+TEST(FixedVerlet, SameBitsWithTwoAndFourLanes) {
+  if (supportedVectorLanes() < 4) GTEST_SKIP() << "this CPU has no AVX2: the 4-lane loops are not run";
+  for (const auto& [method, step] : {std::pair<std::string, double>{"fixed-verlet-implicit-joint-damping", 1e-4 / 28},
+                                     {"fixed-verlet", 2.5e-6}}) {
+    const std::vector<double> two = stateAfter(method, step, 2), four = stateAfter(method, step, 4);
+    ASSERT_EQ(two.size(), four.size());
+    for (std::size_t i = 0; i < two.size(); ++i)
+      ASSERT_EQ(std::memcmp(&two[i], &four[i], sizeof(double)), 0) << method << ": state " << i;
+  }
+}
+
+// Beyond its stable step (about 4.6 us) the real-time method stops with a named failure, not with
+// garbage: at 8 us within 20 ms.
+TEST(FixedVerlet, ImplicitJointDampingBeyondItsLimitIsANamedFailure) {
+  try {
+    tensionerRun(defaultModel(), "fixed-verlet-implicit-joint-damping", 8e-6, 0.02);
+    FAIL() << "expected a blow-up at 8 us";
+  } catch (const IntegrationError& e) {
+    EXPECT_TRUE(e.failureKind() == FailureKind::BlowUp || e.failureKind() == FailureKind::Tunnelling) << e.what();
+  }
 }
 
 TEST(FixedVerlet, ImplicitJointDampingRefusedWithoutConstantJointDamping) {

@@ -11,7 +11,7 @@ import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from harness import paths
+from harness import job, paths
 from harness.fmu import fmu
 
 W2000 = fmu.rpm_to_rad_s(2000.0)
@@ -117,8 +117,10 @@ def test_instances_in_two_threads_reproduce_their_solo_runs_bit_for_bit():
         assert np.array_equal(results[k], solo)
 
 
-def test_get_set_state_and_serialization_roll_back_exactly():
-    s = fmu.Slave("state")
+@pytest.mark.parametrize("parameters", [{}, {"solver.method": job.REALTIME_METHOD, "solver.step": job.REALTIME_STEP}],
+                         ids=["default", "real-time method"])
+def test_get_set_state_and_serialization_roll_back_exactly(parameters):
+    s = fmu.Slave("state", parameters=parameters)
     s.initialize(inputs=INPUTS)
     for k in range(5):
         s.step(H, t=k * H)
