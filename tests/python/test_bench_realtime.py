@@ -86,10 +86,16 @@ def test_bad_reference_is_named(tmp_path, capsys):
     assert parse(["--reference", f"3000={good}"]).references[3000.0]["tensioner.F.mean"]["mean"] == 1.0
 
 
+def test_host_speed_line_gives_ns_per_link_and_step():
+    # 0.656 CPU s per simulated s over 400000 steps of 120 links: 13.7 ns per link and step
+    assert "0.656 CPU s per simulated s, 13.7 ns per link and step" in realtime.host_line(0.656)
+
+
 def test_short_run_reports_the_real_time_factor(tmp_path, capsys):
     out = tmp_path / "rt.md"
     assert cli.main(["bench-realtime", "--rpm", "6000", "--cycles", "2", "--repeats", "2", "--out", str(out)]) == 0
     report = out.read_text()
     assert "## 6000 rpm: fixed-verlet-implicit-joint-damping at 3.57143 us" in report
     assert "the model's own spread" in report and "the slowest of 2 bit-identical runs" in report
+    assert "Host speed: the solver alone" in report and "ns per link and step" in report
     assert "RTF (CPU s inside fmi2DoStep per simulated s)" in report and "p99 / median" in report
