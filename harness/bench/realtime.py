@@ -27,10 +27,10 @@ run with their 95 % half-widths over engine cycles, the difference and the toler
 The machine heads the report, which is also written as Markdown to --out. Run nothing else on
 the machine meanwhile: CPU timings of shared cores are noisy (compare medians and ratios of one run).
 
-Hosts differ: the same build, the same instructions per link and step, has run twice as fast on one
-host as on another. The report therefore starts with the host's speed on a fixed workload (HOST_WORKLOAD:
+Hosts differ: the same build, the same instructions per link and step, has run 2.9 times as fast on
+one host as on another. The report therefore starts with the host's speed on a fixed workload (HOST_WORKLOAD:
 the solver alone, plain Verlet at 2.5 us, 3000 rpm; the CPU of a 0.3 s run minus that of a 0.1 s
-run, so the start drops out; median of 3), as CPU s per simulated s and ns per link and step: RTFs
+run, so the start drops out; median of HOST_REPEATS), as CPU s per simulated s and ns per link and step: RTFs
 of different hosts compare through it.
 """
 import argparse
@@ -41,14 +41,15 @@ import tempfile
 import numpy as np
 
 from .. import job, paths, runs
+from ..drive.description import drive_json
 from ..study import ladder
 
 # real-time factor targets per speed [CPU s per simulated s inside fmi2DoStep]; spread targets
 RTF_TARGET = {3000.0: 1.0, 6000.0: 1.5}
 P99_TARGET, MAX_TARGET = 1.5, 3.0  # p99 / median and max / median of the CPU per fmi2DoStep
-# the host's speed: the solver alone on the default drive (120 links), plain Verlet at 2.5 us
+# the host's speed: the solver alone on the default drive, plain Verlet at 2.5 us
 HOST_WORKLOAD = dict(rpm=3000.0, integrator="fixed-verlet", step=2.5e-6, output_step=1e-3)
-HOST_DURATIONS, HOST_LINKS = (0.1, 0.3), 120
+HOST_DURATIONS, HOST_REPEATS = (0.1, 0.3), 3
 # the accuracy a real-time method must keep against the reference
 TOLERANCES = ("tensioner.F.mean=2%", "chain.Ftight.mean=2%", "chain.Fslack.mean=2%",
               "tensionGuide.phi.peakToPeak_deg=10%", "tensioner.F.order2=3dB", "tensioner.F.order4=3dB",
@@ -117,22 +118,25 @@ def timing(scene_runs, steps_per_cycle):
                 cycles=cycles)
 
 
-def host_speed(repeats=3):
-    """CPU s per simulated s of HOST_WORKLOAD without its start (median over repeats)."""
-    rates = []
+def host_speed():
+    """HOST_WORKLOAD without its start, the median over HOST_REPEATS: CPU s per simulated s and
+    CPU s per link and step (the steps as the runs count them, the links of the default drive)."""
+    links = drive_json()["chain"]["numberOfLinks"]
+    per_s, per_link_step = [], []
     with tempfile.TemporaryDirectory() as tmp:
-        for _ in range(repeats):
-            short, long = (runs.run(pathlib.Path(tmp) / "host.csv", duration=d, **HOST_WORKLOAD)[2]["cpu"]
+        for _ in range(HOST_REPEATS):
+            short, long = (runs.run(pathlib.Path(tmp) / "host.csv", duration=d, **HOST_WORKLOAD)[2]
                            for d in HOST_DURATIONS)
-            rates.append((long - short) / (HOST_DURATIONS[1] - HOST_DURATIONS[0]))
-    return float(np.median(rates))
+            cpu = long["cpu"] - short["cpu"]
+            per_s.append(cpu / (long["simulated"] - short["simulated"]))
+            per_link_step.append(cpu / (long["steps"] - short["steps"]) / links)
+    return float(np.median(per_s)), float(np.median(per_link_step))
 
 
-def host_line(cpu_per_s):
-    steps_per_s = 1.0 / HOST_WORKLOAD["step"]
+def host_line(cpu_per_s, cpu_per_link_step):
     return (f"Host speed: the solver alone (chaindrive-run, fixed-verlet at 2.5 us, 3000 rpm, outputs every 1 ms, "
             f"the start left out) {cpu_per_s:.3g} CPU s per simulated s, "
-            f"{cpu_per_s / steps_per_s / HOST_LINKS * 1e9:.1f} ns per link and step (median of 3)")
+            f"{cpu_per_link_step * 1e9:.1f} ns per link and step (median of {HOST_REPEATS})")
 
 
 def verdict(ok):
@@ -191,7 +195,7 @@ def difference(scene_runs):
 def run(args):
     lines = ["# Real-time benchmark: the link model through ChainDrive.fmu", "",
              f"Machine: {runs.machine()}; command: python -m harness bench-realtime {' '.join(args.argv)}", "",
-             host_line(host_speed()), ""]
+             host_line(*host_speed()), ""]
     print("\n".join(lines))
     for rpm in args.rpm:
         a = scene_args(args, rpm)

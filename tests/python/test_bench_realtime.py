@@ -88,7 +88,7 @@ def test_bad_reference_is_named(tmp_path, capsys):
 
 def test_host_speed_line_gives_ns_per_link_and_step():
     # 0.656 CPU s per simulated s over 400000 steps of 120 links: 13.7 ns per link and step
-    assert "0.656 CPU s per simulated s, 13.7 ns per link and step" in realtime.host_line(0.656)
+    assert "0.656 CPU s per simulated s, 13.7 ns per link and step" in realtime.host_line(0.656, 0.656 / 400000 / 120)
 
 
 def test_short_run_reports_the_real_time_factor(tmp_path, capsys):
