@@ -128,17 +128,6 @@ class Layout {
   std::vector<RouteElement> route_;
 };
 
-// Walks n chords of one pitch from s0; returns the arc length of the n-th pin (not wrapped).
-double walk(const ChainPath& path, double s0, int n, double pitch, std::vector<double>* pins) {
-  double s = s0;
-  if (pins) pins->assign(1, s0);
-  for (int k = 0; k < n; ++k) {
-    s = path.nextPin(s, pitch);
-    if (pins && k + 1 < n) pins->push_back(s);
-  }
-  return s;
-}
-
 void throwIfAny(const std::vector<std::string>& problems) {
   if (!problems.empty()) throw DescriptionError(problems);
 }
@@ -171,6 +160,7 @@ void setConstants(const DriveDescription& desc, Model& m) {
   ch.mass = desc.chain.linkMass;
   ch.inertia = desc.chain.linkInertia;
   ch.rollerRadius = 0.5 * desc.chain.rollerDiameter;
+  ch.depthScale = ch.rollerRadius;
   ch.plateHalfHeight = 0.5 * desc.chain.plateHeight;
   ch.jointStiffness = desc.chain.joint.stiffness;
   ch.jointDamping = desc.chain.joint.damping;
@@ -341,7 +331,7 @@ class ClosureGap {
     for (const PathSegment& seg : path.segments())
       if (seg.isArc && !layout_.route()[seg.routeIndex].sprocket && std::fabs(seg.sweep) > 0.5 * kPi) return std::nan("");
     const double s0 = path.arcMiddle(0);
-    const double g = walk(path, s0, n_, p_, nullptr) - s0 - path.length();
+    const double g = walkChords(path, s0, n_, p_, nullptr) - s0 - path.length();
     fitLinks = n_ - g / p_;
     return g;
   }
@@ -487,7 +477,7 @@ void placePins(Model& m, const std::vector<RouteElement>& route) {
   const double p = m.chain.pitch;
   std::vector<double> spin;
   const double s0 = m.path.arcMiddle(0);
-  const double sEnd = walk(m.path, s0, n, p, &spin);
+  const double sEnd = walkChords(m.path, s0, n, p, &spin);
   m.assembly.closureResidual = norm(m.path.point(sEnd) - m.path.point(s0));
   m.pins.resize(n);
   for (int k = 0; k < n; ++k) m.pins[k] = nominalPin(m, route, spin[k]);
@@ -538,20 +528,6 @@ void placeSpanProbe(const Model& m, const std::vector<std::string>& route, const
   }
 }
 
-// The state vector (model.h): the 6 link components over all links, each rotor's angle (and rate
-// unless prescribed), then the two energy accumulators.
-void layOutState(Model& m) {
-  int idx = 6 * m.chain.links;
-  for (auto& r : m.rotors) {
-    r.stateAngle = idx++;
-    r.stateRate = r.prescribed ? -1 : idx++;
-  }
-  m.stateInputWork = idx++;
-  m.stateDissipated = idx++;
-  m.nStates = idx;
-  m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
-}
-
 // Output signs: sprockets in the running sense, the tensioner's guide towards the chain.
 void setRotorOutputSigns(Model& m) {
   m.rotorOutputSign.assign(m.rotors.size(), 1.0);
@@ -565,6 +541,20 @@ void setRotorOutputSigns(Model& m) {
 }
 
 }  // namespace
+
+// The state vector (model.h): the 6 link components over all links, each rotor's angle (and rate
+// unless prescribed), then the two energy accumulators.
+void layOutState(Model& m) {
+  int idx = 6 * m.chain.links;
+  for (auto& r : m.rotors) {
+    r.stateAngle = idx++;
+    r.stateRate = r.prescribed ? -1 : idx++;
+  }
+  m.stateInputWork = idx++;
+  m.stateDissipated = idx++;
+  m.nStates = idx;
+  m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
+}
 
 int Model::rotorIndex(const std::string& n) const {
   for (std::size_t i = 0; i < rotors.size(); ++i)

@@ -152,4 +152,14 @@ double ChainPath::nextPin(double s, double pitch) const {
   return 0.5 * (lo + hi);
 }
 
+double walkChords(const ChainPath& path, double s0, int n, double pitch, std::vector<double>* pins) {
+  double s = s0;
+  if (pins) pins->assign(1, s0);
+  for (int k = 0; k < n; ++k) {
+    s = path.nextPin(s, pitch);
+    if (pins && k + 1 < n) pins->push_back(s);
+  }
+  return s;
+}
+
 }  // namespace chaindrive

@@ -53,6 +53,10 @@ class ChainPath {
   double length_ = 0.0;
 };
 
+/// Walks n chords of one pitch along the path from arc length s0; returns the arc length of the
+/// n-th pin (not wrapped), and the first n pins (s0 included) in `pins` unless null.
+double walkChords(const ChainPath& path, double s0, int n, double pitch, std::vector<double>* pins);
+
 /// Tangent directions between two oriented circles: the unit vector m with tangent points
 /// c1 + r1 m and c2 + r2 m. Returns false if no such tangent exists.
 bool commonTangent(const RouteCircle& a, const RouteCircle& b, Vec2& m);

@@ -21,14 +21,16 @@ struct ChainModel {
   double mass = 0.0;         // [kg] per link
   double inertia = 0.0;      // [kg m^2] per link
   double rollerRadius = 0.0; // [m]
+  double depthScale = 0.0;   // [m] a contact deeper than HealthLimits::tunnellingDepth times this has
+                             // tunnelled: the roller radius; a CVT's rocker pins: a quarter pitch
   double plateHalfHeight = 0.0;
   double jointStiffness = 0.0, jointDamping = 0.0, jointClearance = 0.0;
 };
 
-/// A rotating rigid body: a sprocket (prescribed or free) or a pivoting guide.
+/// A rotating rigid body: a sprocket (prescribed or free) or a pivoting guide; on a CVT a pulley.
 struct RotorModel {
   std::string name;
-  bool isSprocket = true;
+  bool isSprocket = true;    // a wheel the chain wraps, driven or loaded (sprocket or pulley); false: a guide
   int element = -1;          // index into Model::sprockets or Model::guides
   Vec2 axis;                 // [m]
   double inertia = 0.0;      // [kg m^2]
@@ -60,6 +62,27 @@ struct GuideModel {
   double pivotDamping = 0.0;
 };
 
+/// A CVT's pulley (cvt/): the chain's rocker pins clamped between its two conical sheaves, which
+/// stand at a fixed axial distance (the transmission ratio), so a pin's axial compression follows
+/// from its radius alone.
+struct PulleyModel {
+  std::string name;
+  int rotor = -1;
+  Vec2 center;
+  double runningRadius = 0.0;  // [m] the pins' circle at the assembled pose
+  double freeRadius = 0.0;     // [m] where the sheaves' gap equals the pin's length: a pin inside it
+                               // is compressed, one outside it is free
+};
+
+/// The rocker pins between the sheaves (cvt/pin_sheave.h): each pin a bolt with linear axial
+/// stiffness pressed between two cones of wedge half-angle beta.
+struct PinSheaveLaw {
+  double tanWedge = 0.0, cosWedge = 1.0;  // tan and cos of beta
+  double axialStiffness = 0.0;            // [N/m] the pin with its end contacts
+  double axialDamping = 0.0;              // [N s/m]
+  double friction = 0.0;                  // Coulomb coefficient on each sheave face
+};
+
 struct TensionerModel {
   bool present = false;
   int rotor = -1;
@@ -83,7 +106,7 @@ struct SpanProbe {
 /// Nominal (rigid, polygonal) motion of one pin at the assembled pose.
 struct PinNominal {
   Vec2 position;
-  enum class On { Sprocket, Guide, Span } on = On::Span;
+  enum class On { Sprocket, Guide, Span } on = On::Span;  // (Sprocket: a wheel, also a CVT's pulley)
   int rotor = -1;     // sprocket rotor (On::Sprocket)
   Vec2 center;        // arc centre (Sprocket/Guide)
   double radius = 0;  // arc radius (Guide)
@@ -109,6 +132,8 @@ struct Model {
   std::vector<RotorModel> rotors;
   TensionerModel tensioner;
   ContactLaw rollerSprocket, plateGuide;
+  std::vector<PulleyModel> pulleys;  // a CVT's (then no sprockets, guides or tensioner)
+  PinSheaveLaw pinSheave;
   double frictionRegularization = 0.05;
   int drivenRotor = -1;        // the rotor with prescribed motion, -1 if none
   std::vector<double> rotorOutputSign;  // (rotors) sprockets: running sense; guides: towards the chain
@@ -137,6 +162,9 @@ struct Model {
 
   int rotorIndex(const std::string& name) const;  // -1 if none
 };
+
+/// Lays out the state vector (the layout above) for the model's links and rotors.
+void layOutState(Model& m);
 
 /// Builds the model: tooth and guide geometry, the chain path, the closure solve, the rigid
 /// assembled pose. Throws DescriptionError for geometric problems (naming the field).

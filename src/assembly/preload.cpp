@@ -323,10 +323,13 @@ std::vector<double> nominalRotorRates(const Model& m, double crankSpeed) {
 }
 
 std::vector<double> nominalState(const Model& m, double crankSpeed) {
+  const std::vector<double> rates = nominalRotorRates(m, crankSpeed);
+  return nominalState(m, rates, chainSpeedOf(m, rates));
+}
+
+std::vector<double> nominalState(const Model& m, const std::vector<double>& rates, double v) {
   const int n = m.chain.links;
   std::vector<double> y(m.nStates, 0.0);
-  const std::vector<double> rates = nominalRotorRates(m, crankSpeed);
-  const double v = chainSpeedOf(m, rates);
   for (int i = 0; i < n; ++i) {
     const PinNominal& a = m.pins[i];
     const PinNominal& b = m.pins[(i + 1) % n];

@@ -33,6 +33,9 @@ std::vector<double> nominalRotorRates(const Model& m, double crankSpeed);
 
 /// The nominal (rigid, unstretched) pose with nominal velocities; energy accumulators zero.
 std::vector<double> nominalState(const Model& m, double crankSpeed);
+/// The same at the given rotor rates (math sense) and chain speed [m/s] (pins on the spans move
+/// at it along the path, pins on a wheel with the wheel).
+std::vector<double> nominalState(const Model& m, const std::vector<double>& rates, double chainSpeed);
 
 /// Nominal state, pre-loaded. Throws std::runtime_error if the solve diverges (with the reason).
 std::vector<double> initialState(const Model& m, const InputValues& inputs, const PreloadOptions& opt,

@@ -36,16 +36,6 @@ void readHeader(Fields& top, DriveDescription& desc) {
   desc.gravity = top.vec2("gravity", 100.0, Vec2{0.0, -9.81}, "m/s^2");
 }
 
-// The pin-bushing joint of the links (journal bearing or ideal).
-void readJoint(Fields jt, JointDesc& joint) {
-  if (!jt.valid()) return;
-  joint.model = jt.string("model", {"journal-bearing", "ideal"}, std::string("journal-bearing"));
-  joint.stiffness = jt.number("stiffness", 0.0, 1e12, std::nullopt, "N/m", true);
-  joint.damping = jt.number("damping", 0.0, 1e6, 0.0, "N s/m");
-  joint.clearance = jt.number("clearance", 0.0, 1e-3, 0.0, "m");
-  jt.finish();
-}
-
 // The chain: its links, their joint and the route the chain wraps.
 void readChain(Fields& top, DriveDescription& desc) {
   Fields c = top.object("chain", true);
@@ -395,15 +385,26 @@ void checkClosureInRoute(const DriveDescription& desc, std::vector<std::string>&
 }
 
 // The JSON text (comments allowed); a syntax error is the only problem reported.
-json parseJson(std::string_view text) {
+
+}  // namespace
+
+// The pin-bushing joint of the links (journal bearing or ideal).
+void readJoint(Fields jt, JointDesc& joint) {
+  if (!jt.valid()) return;
+  joint.model = jt.string("model", {"journal-bearing", "ideal"}, std::string("journal-bearing"));
+  joint.stiffness = jt.number("stiffness", 0.0, 1e12, std::nullopt, "N/m", true);
+  joint.damping = jt.number("damping", 0.0, 1e6, 0.0, "N s/m");
+  joint.clearance = jt.number("clearance", 0.0, 1e-3, 0.0, "m");
+  jt.finish();
+}
+
+Fields::json parseJson(std::string_view text) {
   try {
     return json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
     throw DescriptionError({std::string("(file): not valid JSON: ") + e.what()});
   }
 }
-
-}  // namespace
 
 DescriptionError::DescriptionError(std::vector<std::string> problems)
     : std::runtime_error(joinLines(problems)), problems_(std::move(problems)) {}
@@ -476,19 +477,17 @@ DriveDescription parseDriveDescription(std::string_view text) {
   return desc;
 }
 
-DriveDescription loadDriveDescription(const std::string& path) {
+std::string readDescriptionFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DescriptionError({"(file) " + path + ": cannot be opened for reading"});
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw DescriptionError({"(file) " + path + ": read error"});
-  try {
-    return parseDriveDescription(ss.str());
-  } catch (const DescriptionError& e) {
-    std::vector<std::string> p;
-    for (const auto& s : e.problems()) p.push_back(path + ": " + s);
-    throw DescriptionError(p);
-  }
+  return ss.str();
+}
+
+DriveDescription loadDriveDescription(const std::string& path) {
+  return parseDescriptionFile(path, [](std::string_view text) { return parseDriveDescription(text); });
 }
 
 std::string_view defaultDriveJson() { return kDefaultDriveJson; }

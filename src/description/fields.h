@@ -7,10 +7,12 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "description/drive_description.h"
 #include "vec2.h"
 
 namespace chaindrive {
@@ -65,5 +67,27 @@ class Fields {
   std::vector<std::string>& problems_;
   std::set<std::string> seen_;
 };
+
+struct JointDesc;
+
+/// The text parsed as JSON (comments allowed); a syntax error is a DescriptionError.
+Fields::json parseJson(std::string_view text);
+/// The text of a description file; an unreadable one is a DescriptionError naming the path.
+std::string readDescriptionFile(const std::string& path);
+/// parse(text of the file at path), its problems prefixed by the path.
+template <class Parse>
+auto parseDescriptionFile(const std::string& path, Parse parse) {
+  const std::string text = readDescriptionFile(path);
+  try {
+    return parse(text);
+  } catch (const DescriptionError& e) {
+    std::vector<std::string> p;
+    for (const auto& s : e.problems()) p.push_back(path + ": " + s);
+    throw DescriptionError(p);
+  }
+}
+/// The links' joint (the timing drive's and the CVT's descriptions): model, stiffness, damping,
+/// clearance.
+void readJoint(Fields jt, JointDesc& joint);
 
 }  // namespace chaindrive

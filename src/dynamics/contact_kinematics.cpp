@@ -1,5 +1,7 @@
 #include "dynamics/contact_kinematics.h"
 
+#include "cvt/pin_sheave.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -216,7 +218,9 @@ double detectContacts(const Model& m, Data& d, double margin, bool forces) {
   double power = 0.0;
   for (std::size_t s = 0; s < m.sprockets.size(); ++s)
     count = rollerContactsLoop(m, d, static_cast<int>(s), margin, forces, count, power);
-  d.nContacts = detectPlateContacts(m, d, margin, reachLink, forces, count, power);
+  count = detectPlateContacts(m, d, margin, reachLink, forces, count, power);
+  // a CVT's rocker pins between its pulleys' sheaves
+  d.nContacts = m.pulleys.empty() ? count : pinSheaveContacts(m, d, margin, forces, count, power);
   return power;
 }
 

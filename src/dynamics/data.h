@@ -139,7 +139,7 @@ struct SearchWindows {
 /// One closed (or nearly closed) contact with its kinematics: gap, normal and tangent, lever
 /// arms, relative velocities. Its W-matrix columns follow from these (contact_kinematics.h).
 struct ContactPoint {
-  enum class Kind { RollerSprocket, PlateGuide } kind = Kind::RollerSprocket;
+  enum class Kind { RollerSprocket, PlateGuide, PinSheave } kind = Kind::RollerSprocket;
   int link = -1;          // chain link
   int end = 0;            // roller contacts: 0 rear pin, 1 front pin
   int element = -1;       // sprocket or guide index
@@ -151,7 +151,13 @@ struct ContactPoint {
   Vec2 rRotor;            // contact point relative to the rotor axis
   double vN = 0.0, vT = 0.0;  // relative velocity chain minus element
   double fN = 0.0, fT = 0.0;  // force on the chain along normal and tangent
+  double fNFriction = 0.0;    // pin-sheave: the friction along the normal (radial; fN is the wedge's
+                              // normal force, fT the circumferential friction)
+  double axialForce = 0.0;    // pin-sheave: the pin's axial (clamping) force [N]
 };
+
+/// The force of a contact on the chain (a pin-sheave contact's radial friction included).
+inline Vec2 contactForce(const ContactPoint& c) { return (c.fN + c.fNFriction) * c.normal + c.fT * c.tangent; }
 
 struct Data {
   explicit Data(const Model& m);

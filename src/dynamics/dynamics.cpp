@@ -90,7 +90,7 @@ Data::Data(const Model& m)
   guideBoundX.assign(m.guides.size(), 0.0);
   guideBoundY.assign(m.guides.size(), 0.0);
   guideReach2.assign(m.guides.size(), 0.0);
-  contacts.resize(static_cast<std::size_t>(m.chain.links) * (m.sprockets.size() + faces));
+  contacts.resize(static_cast<std::size_t>(m.chain.links) * (m.sprockets.size() + faces + m.pulleys.size()));
   gen.assign(m.nGen, 0.0);
   contactDamping.assign(3 * static_cast<std::size_t>(m.chain.links), 0.0);
   dampingWork.assign(5 * static_cast<std::size_t>(m.chain.links + 1 + LinkArrays::kPadding), 0.0);
@@ -157,6 +157,11 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& c = d.contacts[i];
     if (c.gap >= 0.0) continue;
+    if (c.kind == ContactPoint::Kind::PinSheave) {
+      const double u = 2.0 * m.pinSheave.tanWedge * -c.gap;  // the pin's compression
+      e.elastic += 0.5 * m.pinSheave.axialStiffness * u * u;
+      continue;
+    }
     const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
     const double depth = -c.gap;  // (a linear law's integral without pow: the outputs at every 0.1 ms)
     e.elastic += law.exponent == 1.0 ? law.stiffness * (depth * depth) / 2.0

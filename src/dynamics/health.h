@@ -43,7 +43,7 @@ bool chainHealthy(const Model& m, const HealthLimits& limits, Opening opening, c
       return false;
     }
   }
-  return !deepPenetration(contacts, nContacts, limits.tunnellingDepth * m.chain.rollerRadius, t, why);
+  return !deepPenetration(contacts, nContacts, limits.tunnellingDepth * m.chain.depthScale, t, why);
 }
 
 }  // namespace chaindrive

@@ -74,8 +74,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& c = d.contacts[i];
     if (c.rotor < 0) continue;
-    const Vec2 f = c.fN * c.normal + c.fT * c.tangent;
-    out.rotorTorque[c.rotor] -= cross(c.rRotor, f);
+    out.rotorTorque[c.rotor] -= cross(c.rRotor, contactForce(c));
   }
   finishRotorOutputs(m, d.rotorAngle, d.rotorRate, out);
   // tensioner and span forces

@@ -1,5 +1,7 @@
 #include "run/simulation.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "dynamics/contact_kinematics.h"
@@ -114,7 +116,7 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
   const Model& m = *model_;
   if (!finiteState(y, m.nStates, why)) return false;
   const bool jointsOk = jointsWithin(m, data_, health_.blowUpDeformation * m.chain.pitch);
-  if (jointsOk && !(data_.deepestGap < -health_.tunnellingDepth * m.chain.rollerRadius)) return true;
+  if (jointsOk && !(data_.deepestGap < -health_.tunnellingDepth * m.chain.depthScale)) return true;
   // beyond a limit: named from the contacts listed (evaluated again where they were not: the
   // same positions, so the same gaps) and the joints measured
   if (!data_.listContacts) {
@@ -126,11 +128,31 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
     data_.listContacts = false;
   }
   if (jointsOk)
-    return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.rollerRadius, t, why);
+    return !deepPenetration(data_.contacts.data(), data_.nContacts, health_.tunnellingDepth * m.chain.depthScale, t, why);
   measureJoints(m, data_);  // some joint is opened too far: which, and by how much
   return chainHealthy(m, health_, [&](int j) { return data_.joints.deformation[j]; }, data_.contacts.data(),
                       data_.nContacts, t, why);
 }
+
+namespace {
+
+// A CVT's pin-sheave contacts (cvt/pin_sheave.h) have a force law only: no complementarity
+// formulation, Jacobian or damping rates yet, so the methods that need one are refused.
+void refuseOnPulleys(const std::string& fidelity, const std::string& contactMethod, const std::string& method) {
+  const std::vector<std::string> explicitMethods = {"fixed-verlet", "fixed-verlet-implicit-joint-damping", "arkode-erk",
+                                                    "arkode-erk-fixed"};
+  if (fidelity != "link")
+    throw std::invalid_argument("fidelity '" + fidelity + "': a CVT has the link fidelity only");
+  if (contactMethod != "compliant")
+    throw std::invalid_argument("contact method '" + contactMethod + "': a CVT's pin-sheave contacts are compliant "
+                                "only (allowed: compliant)");
+  if (std::find(explicitMethods.begin(), explicitMethods.end(), method) == explicitMethods.end())
+    throw std::invalid_argument("integrator '" + method + "' needs the contacts' Jacobian or damping rates, which a "
+                                "CVT's pin-sheave contacts do not give; allowed on a CVT: fixed-verlet, "
+                                "fixed-verlet-implicit-joint-damping, arkode-erk, arkode-erk-fixed");
+}
+
+}  // namespace
 
 Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
                        std::unique_ptr<InputSignal> inputs)
@@ -141,6 +163,7 @@ Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptio
   const std::string joints = options_.jointModel.empty() ? desc.chain.joint.model : options_.jointModel;
   if (joints != "journal-bearing" && joints != "ideal")
     throw std::invalid_argument("joint model '" + joints + "' is unknown; allowed: journal-bearing, ideal");
+  if (!model_->pulleys.empty()) refuseOnPulleys(fidelity_, contactMethod_, options_.integrator.method);
   if (fidelity_ == "link") buildLinkModel(joints);
   else if (fidelity_ == "span") buildSpanModel(joints);
   else throw std::invalid_argument("fidelity '" + fidelity_ + "' is unknown; allowed: link, span");

@@ -1,0 +1,121 @@
+// chaindrive-cvt: the chain CVT (paper example 4.1) alone, no FMU: a stationary run at a driving
+// speed and a load torque, its outputs as CSV (the paper's Figure 9 quantities for one pin among
+// them) and a summary with the checks of a stationary state as JSON on stdout.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/arguments.h"
+#include "cvt/cvt_assembly.h"
+#include "cvt/cvt_run.h"
+
+using namespace chaindrive;
+
+namespace {
+
+constexpr const char* kTool = "chaindrive-cvt";
+constexpr double kPi = 3.14159265358979323846;
+
+void usage() {
+  std::fprintf(stderr,
+               "usage: chaindrive-cvt [--cvt FILE] [--rpm R] [--load-torque T] [--duration S] [--output-step S]\n"
+               "                      [--method NAME] [--step S] [--monitored-link K] [--csv FILE] [--quiet]\n"
+               "  --cvt FILE           CVT description (chaindrive.cvt/1); default: the embedded default CVT\n"
+               "  --rpm R              driving-pulley speed [rpm] (default 2000)\n"
+               "  --load-torque T      load torque on the driven pulley [N m] (default 0)\n"
+               "  --duration S         simulated time [s] (default 0.2); the means over its second half\n"
+               "  --method NAME        fixed-verlet (default), fixed-verlet-implicit-joint-damping, arkode-erk,\n"
+               "                       arkode-erk-fixed\n"
+               "  --step S             fixed step [s] (default 2e-6); arkode-erk: its largest step\n"
+               "  --csv FILE           the outputs at every output step (default step 5e-5 s)\n"
+               "Prints the assembly and the summary (means and checks) as JSON.\n");
+}
+
+struct CvtArguments {
+  std::string cvt, csv;
+  CvtRunOptions run;
+  bool quiet = false;
+};
+
+CvtArguments parseArguments(cli::Arguments& args) {
+  CvtArguments r;
+  while (args.next()) {
+    const std::string& a = args.current();
+    if (a == "--cvt") r.cvt = args.value();
+    else if (a == "--rpm") r.run.drivingSpeed = args.number() * kPi / 30.0;
+    else if (a == "--load-torque") r.run.loadTorque = args.number();
+    else if (a == "--duration") r.run.duration = args.number();
+    else if (a == "--output-step") r.run.outputStep = args.number();
+    else if (a == "--method") r.run.integrator.method = args.value();
+    else if (a == "--step") r.run.integrator.fixed.step = r.run.integrator.adaptive.maxStep = args.number();
+    else if (a == "--monitored-link") r.run.monitoredLink = static_cast<int>(args.number());
+    else if (a == "--csv") r.csv = args.value();
+    else if (a == "--quiet") r.quiet = true;
+    else throw std::invalid_argument("unknown argument '" + a + "'");
+  }
+  if (!(r.run.duration > 0.0 && r.run.outputStep > 0.0 && r.run.outputStep <= r.run.duration))
+    throw std::invalid_argument("--duration and --output-step must be positive, the output step at most the duration");
+  return r;
+}
+
+void writeCsv(const std::string& path, const CvtRunResult& r) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  f << "time,drivingSpeed,drivenSpeed,slip,tightStrandForce,slackStrandForce,clampingForceDriving,"
+       "clampingForceDriven,drivingTorque,drivenTorque,powerLoss,pinPulley,pinNormalForce,pinRadialFriction,"
+       "pinCircumferentialFriction,pinAxialForce,linkTension\n";
+  char line[512];
+  for (const CvtSample& s : r.samples) {
+    const CvtOutputs& c = s.cvt;
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                  s.time, c.drivingSpeed, c.drivenSpeed, c.slip, c.tightStrandForce, c.slackStrandForce,
+                  c.clampingForce[0], c.clampingForce[1], c.drivingTorque, c.drivenTorque, c.powerLoss, c.pinPulley,
+                  c.pinNormalForce, c.pinRadialFriction, c.pinCircumferentialFriction, c.pinAxialForce, c.linkTension);
+    f << line;
+  }
+}
+
+nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtArguments& a, const CvtRunResult& r) {
+  const CvtSummary& s = r.summary;
+  const double chainLength = m.chain.links * m.chain.pitch;
+  const double revolution = chainLength / (a.run.drivingSpeed * layout.runningRadius[0]);  // [s] of one chain revolution
+  nlohmann::json j;
+  j["cvt"] = m.name;
+  j["assembly"] = {{"runningRadius", {layout.runningRadius[0], layout.runningRadius[1]}},
+                   {"wrapAngle", {layout.wrapAngle[0], layout.wrapAngle[1]}},
+                   {"pretension", layout.pretension},
+                   {"clampingForce", {layout.clampingForce[0], layout.clampingForce[1]}},
+                   {"closureResidual", m.assembly.closureResidual}};
+  j["run"] = {{"method", a.run.integrator.method}, {"step", a.run.integrator.fixed.step},
+              {"drivingSpeed_rpm", a.run.drivingSpeed * 30.0 / kPi}, {"loadTorque", a.run.loadTorque},
+              {"duration", a.run.duration}, {"steps", r.steps}, {"cpuSeconds", r.cpuSeconds},
+              {"chainRevolution", revolution}, {"cpuPerChainRevolution", r.cpuSeconds * revolution / a.run.duration}};
+  j["means"] = {{"from", s.from}, {"to", s.to}, {"drivingSpeed", s.drivingSpeed}, {"drivenSpeed", s.drivenSpeed},
+                {"slip", s.slip}, {"speedRatio", s.speedRatio}, {"geometricRatio", s.geometricRatio},
+                {"tightStrandForce", s.tightStrandForce}, {"slackStrandForce", s.slackStrandForce},
+                {"clampingForce", {s.clampingForce[0], s.clampingForce[1]}}, {"drivingTorque", s.drivingTorque},
+                {"drivenTorque", s.drivenTorque}, {"powerLoss", s.powerLoss}, {"netInputPower", s.netInputPower}};
+  j["checks"] = {{"speedRatioError", s.speedRatioError}, {"torqueBalanceDriven", s.torqueBalanceDriven},
+                 {"torqueBalanceDriving", s.torqueBalanceDriving}, {"energyBalanceError", s.energyBalanceError},
+                 {"pinsInContact", {s.pinsInContact[0], s.pinsInContact[1]}}};
+  return j;
+}
+
+int run(const CvtArguments& a) {
+  const CvtDescription desc = a.cvt.empty() ? defaultCvtDescription() : loadCvtDescription(a.cvt);
+  CvtLayout layout;
+  auto model = std::make_shared<const Model>(assembleCvt(desc, &layout));
+  const CvtRunResult r = runCvt(model, a.run);
+  if (!a.csv.empty()) writeCsv(a.csv, r);
+  if (!a.quiet) std::printf("%s\n", summaryJson(*model, layout, a, r).dump(2).c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return cli::runTool(kTool, argc, argv, usage, parseArguments, run); }

@@ -1,0 +1,182 @@
+#include "cvt/cvt_assembly.h"
+
+#include <cmath>
+#include <string>
+
+#include "assembly/preload.h"
+#include "cvt/cvt_outputs.h"
+
+namespace chaindrive {
+
+namespace {
+
+std::string fmt(double v) { return std::to_string(v); }
+
+// The path through the two pulleys' running circles, the driving one's radius r1.
+ChainPath pathAt(const CvtDescription& d, double r1) {
+  return ChainPath::through({{Vec2{0.0, 0.0}, d.rotationSense * r1},
+                             {Vec2{d.centerDistance, 0.0}, d.rotationSense * d.ratio * r1}});
+}
+
+// The closure gap at driving radius r1: how far n chords, walked from the middle of the driving
+// pulley's wrap, end beyond the start (> 0: the chain is longer than the path).
+double closureGap(const CvtDescription& d, double r1, double chord) {
+  const ChainPath path = pathAt(d, r1);
+  const double s0 = path.arcMiddle(0);
+  return walkChords(path, s0, d.numberOfLinks, chord, nullptr) - s0 - path.length();
+}
+
+// The driving running radius that closes the chain of chords `chord` (bisection: the gap falls
+// as the radii grow), between a pitch and the radius at which the pulleys' circles touch.
+double closingRadius(const CvtDescription& d, double chord) {
+  double lo = d.pitch, hi = 0.98 * d.centerDistance / (1.0 + d.ratio);
+  const double gLo = lo < hi ? closureGap(d, lo, chord) : 0.0, gHi = lo < hi ? closureGap(d, hi, chord) : 0.0;
+  if (!(gLo > 0.0 && gHi < 0.0))
+    throw DescriptionError({"chain.numberOfLinks: " + std::to_string(d.numberOfLinks) + " links of " + fmt(d.pitch) +
+                            " m do not fit around pulleys " + fmt(d.centerDistance) + " m apart at ratio " +
+                            fmt(d.ratio) + " with running radii from one pitch to where the pulleys touch"});
+  for (int it = 0; it < 200 && hi - lo > 1e-13; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (closureGap(d, mid, chord) > 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+void setChain(const CvtDescription& d, Model& m) {
+  m.name = d.name;
+  m.sense = d.rotationSense;
+  m.gravity = d.gravity;
+  ChainModel& ch = m.chain;
+  ch.links = d.numberOfLinks;
+  ch.pitch = d.pitch;
+  ch.mass = d.linkMass;
+  ch.inertia = d.linkInertia;
+  ch.depthScale = 0.25 * d.pitch;  // (a pin pushed in by an eighth of a pitch has tunnelled)
+  ch.jointStiffness = d.joint.stiffness;
+  ch.jointDamping = d.joint.damping;
+  ch.jointClearance = d.joint.clearance;
+  m.frictionRegularization = d.frictionRegularization;
+  PinSheaveLaw& law = m.pinSheave;
+  law.tanWedge = std::tan(d.wedgeHalfAngle);
+  law.cosWedge = std::cos(d.wedgeHalfAngle);
+  law.axialStiffness = d.pinAxialStiffness;
+  law.axialDamping = d.pinAxialDamping;
+  law.friction = d.friction;
+}
+
+void addPulley(Model& m, const std::string& name, Vec2 center, double inertia, bool prescribed) {
+  RotorModel r;
+  r.name = name;
+  r.isSprocket = true;
+  r.element = static_cast<int>(m.pulleys.size());
+  r.axis = center;
+  r.inertia = inertia;
+  r.prescribed = prescribed;
+  PulleyModel p;
+  p.name = name;
+  p.rotor = static_cast<int>(m.rotors.size());
+  p.center = center;
+  m.rotors.push_back(r);
+  m.pulleys.push_back(p);
+}
+
+// The pins n chords of `chord` apart from the middle of the driving pulley's wrap, each on a
+// pulley (carried by its rotor) or on a strand.
+void placePins(Model& m, double chord) {
+  const int n = m.chain.links;
+  std::vector<double> spin;
+  const double s0 = m.path.arcMiddle(0);
+  const double sEnd = walkChords(m.path, s0, n, chord, &spin);
+  m.assembly.closureResidual = norm(m.path.point(sEnd) - m.path.point(s0));
+  m.pins.resize(n);
+  for (int k = 0; k < n; ++k) {
+    PinNominal& pn = m.pins[k];
+    pn.position = m.path.point(spin[k]);
+    pn.tangent = m.path.tangent(spin[k]);
+    const PathSegment& seg = m.path.segments()[m.path.segmentAt(spin[k])];
+    pn.on = seg.isArc ? PinNominal::On::Sprocket : PinNominal::On::Span;
+    if (seg.isArc) {
+      pn.rotor = m.pulleys[seg.routeIndex].rotor;
+      pn.center = seg.center;
+      pn.radius = std::fabs(seg.signedRadius);
+    }
+  }
+  double maxGap = 0.0;
+  for (int k = 0; k < n; ++k)
+    maxGap = std::max(maxGap, std::fabs(norm(m.pins[(k + 1) % n].position - m.pins[k].position) - chord));
+  m.assembly.maxJointGap = maxGap;
+}
+
+// The pre-tension the driven pulley's clamping force holds, T = 2 tan(beta) F / phi (the pins'
+// axial forces over its wrap phi, friction aside), and the chord of a link stretched by it; the
+// chain closed at that chord. Twice: the wrap moves a little with the chord.
+double closeChain(const CvtDescription& d, Model& m, CvtLayout& out) {
+  double chord = d.pitch, r1 = 0.0;
+  for (int pass = 0; pass < 3; ++pass) {
+    r1 = closingRadius(d, chord);
+    m.path = pathAt(d, r1);
+    out.wrapAngle[0] = std::fabs(m.path.segments()[0].sweep);
+    out.wrapAngle[1] = std::fabs(m.path.segments()[2].sweep);
+    out.pretension = 2.0 * m.pinSheave.tanWedge * d.clampingForce / out.wrapAngle[1];
+    chord = d.pitch + out.pretension / d.joint.stiffness;
+  }
+  out.runningRadius[0] = r1;
+  out.runningRadius[1] = d.ratio * r1;
+  return chord;
+}
+
+// Each pulley's free radius: a pin on its running circle is pushed inwards by T chord / r (the
+// two links pulling at it) and held by the sheaves' radial stiffness 4 k_a tan^2(beta).
+void setFreeRadii(Model& m, double chord, CvtLayout& out) {
+  const PinSheaveLaw& law = m.pinSheave;
+  const double radialStiffness = 4.0 * law.axialStiffness * law.tanWedge * law.tanWedge;
+  for (int k = 0; k < 2; ++k) {
+    PulleyModel& p = m.pulleys[k];
+    p.runningRadius = out.runningRadius[k];
+    const double depth = out.pretension * chord / (p.runningRadius * radialStiffness);
+    p.freeRadius = p.runningRadius + depth;
+    const double pinsOnWrap = out.wrapAngle[k] * p.runningRadius / chord;
+    out.clampingForce[k] = pinsOnWrap * law.axialStiffness * 2.0 * law.tanWedge * depth;
+  }
+}
+
+void noteLayout(Model& m, const CvtLayout& out) {
+  AssemblyReport& a = m.assembly;
+  a.closureElement = "drivingPulley (running radius)";
+  a.closureValue = out.runningRadius[0];
+  a.pathLength = m.path.length();
+  a.notes.push_back("running radii " + fmt(out.runningRadius[0]) + " m (driving) and " + fmt(out.runningRadius[1]) +
+                    " m (driven)");
+  a.notes.push_back("pre-tension " + fmt(out.pretension) + " N; clamping forces " + fmt(out.clampingForce[0]) +
+                    " N (driving) and " + fmt(out.clampingForce[1]) + " N (driven)");
+}
+
+}  // namespace
+
+Model assembleCvt(const CvtDescription& d, CvtLayout* layout) {
+  Model m;
+  setChain(d, m);
+  addPulley(m, "drivingPulley", Vec2{0.0, 0.0}, 0.0, true);
+  addPulley(m, "drivenPulley", Vec2{d.centerDistance, 0.0}, d.drivenInertia, false);
+  m.drivenRotor = kDrivingPulley;  // (the rotor the speed input drives)
+  CvtLayout out;
+  const double chord = closeChain(d, m, out);
+  setFreeRadii(m, chord, out);
+  placePins(m, chord);
+  noteLayout(m, out);
+  placeStrandProbes(m);
+  layOutState(m);
+  m.rotorOutputSign.assign(m.rotors.size(), m.sense);
+  if (layout) *layout = out;
+  return m;
+}
+
+std::vector<double> cvtNominalState(const Model& m, double drivingSpeed) {
+  const double r1 = m.pulleys[kDrivingPulley].runningRadius, r2 = m.pulleys[kDrivenPulley].runningRadius;
+  std::vector<double> rates(m.rotors.size(), 0.0);
+  rates[kDrivingPulley] = m.sense * drivingSpeed;
+  rates[kDrivenPulley] = m.sense * drivingSpeed * r1 / r2;
+  return nominalState(m, rates, drivingSpeed * r1);
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,48 @@
+#include "cvt/cvt_outputs.h"
+
+#include "cvt/cvt_assembly.h"
+
+namespace chaindrive {
+
+void placeStrandProbes(Model& m) {
+  // path segments: driving arc, strand to the driven pulley, driven arc, strand back
+  const PathSegment& leaving = m.path.segments()[1];
+  const PathSegment& entering = m.path.segments()[3];
+  auto probe = [](const PathSegment& s, SpanProbe& p) {
+    p.present = true;
+    p.point = 0.5 * (s.from + s.to);
+    p.direction = (1.0 / norm(s.to - s.from)) * (s.to - s.from);
+  };
+  probe(entering, m.tightSpan);
+  probe(leaving, m.slackSpan);
+}
+
+CvtOutputs cvtOutputs(const Model& m, const Data& d, const Outputs& out, int monitoredLink) {
+  CvtOutputs c;
+  c.drivingSpeed = out.rotorRate[kDrivingPulley];
+  c.drivenSpeed = out.rotorRate[kDrivenPulley];
+  const double geometric = m.pulleys[kDrivingPulley].runningRadius / m.pulleys[kDrivenPulley].runningRadius;
+  c.slip = c.drivingSpeed != 0.0 ? 1.0 - c.drivenSpeed / c.drivingSpeed / geometric : 0.0;
+  c.tightStrandForce = out.tightSpanForce;
+  c.slackStrandForce = out.slackSpanForce;
+  c.drivingTorque = -out.rotorTorque[kDrivingPulley];
+  c.drivenTorque = out.rotorTorque[kDrivenPulley];
+  c.powerLoss = d.powerDissipated;
+  c.linkTension = out.linkTension;
+  const int pin = monitoredLink >= 0 && monitoredLink < m.chain.links ? monitoredLink : m.monitoredLink;
+  for (int i = 0; i < d.nContacts; ++i) {
+    const ContactPoint& p = d.contacts[i];
+    if (p.kind != ContactPoint::Kind::PinSheave || p.gap >= 0.0) continue;
+    c.clampingForce[p.element] += p.axialForce;
+    c.pinsInContact[p.element] += p.axialForce > 0.0 ? 1 : 0;
+    if (p.link != pin) continue;
+    c.pinPulley = p.element;
+    c.pinNormalForce = p.fN;
+    c.pinRadialFriction = p.fNFriction;
+    c.pinCircumferentialFriction = m.sense * p.fT;  // (forwards: the running direction)
+    c.pinAxialForce = p.axialForce;
+  }
+  return c;
+}
+
+}  // namespace chaindrive

@@ -1,0 +1,85 @@
+// The checks of a stationary CVT run (paper example 4.1) on the default CVT at 2000 rpm.
+#include "cvt/cvt_run.h"
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "cvt/cvt_assembly.h"
+#include "run/simulation.h"
+
+using namespace chaindrive;
+
+namespace {
+
+// 0.08 s (1.3 chain revolutions) at 0.5 us, the means over its second half.
+CvtRunResult stationaryRun(double loadTorque) {
+  static const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  CvtRunOptions opt;
+  opt.loadTorque = loadTorque;
+  opt.duration = 0.08;
+  opt.outputStep = 1e-4;
+  opt.integrator.fixed.step = 5e-7;
+  return runCvt(model, opt);
+}
+
+}  // namespace
+
+TEST(CvtRun, NoLoadRunsAtTheGeometricRatio) {
+  CvtLayout layout;
+  const Model m = assembleCvt(defaultCvtDescription(), &layout);
+  const CvtSummary s = stationaryRun(0.0).summary;
+  EXPECT_LT(std::fabs(s.speedRatioError), 0.005);  // within 0.5 %
+  EXPECT_LT(std::fabs(s.energyBalanceError), 0.01);
+  // the sheaves press the pins of the wraps and none of the strands': as many as the wrap holds
+  for (int k = 0; k < 2; ++k) {
+    const double wrapPins = layout.wrapAngle[k] * layout.runningRadius[k] / m.chain.pitch;
+    EXPECT_NEAR(s.pinsInContact[k], wrapPins, 1.5) << "pulley " << k;
+  }
+}
+
+TEST(CvtRun, LoadedRunBalancesTorqueAndEnergyAndSlipsMore) {
+  const CvtSummary none = stationaryRun(0.0).summary, half = stationaryRun(50.0).summary,
+                   full = stationaryRun(100.0).summary;
+  for (const CvtSummary* s : {&half, &full}) {
+    // (F_tight - F_slack) r2 = the torque the chain turns the driven pulley with, within 2 %
+    EXPECT_NEAR(s->torqueBalanceDriven, s->drivenTorque, 0.02 * std::fabs(s->drivenTorque));
+    EXPECT_LT(std::fabs(s->energyBalanceError), 0.01);
+    EXPECT_GT(s->tightStrandForce, s->slackStrandForce);
+  }
+  EXPECT_NEAR(full.drivenTorque, 100.0, 2.0);  // stationary: the chain's torque holds the load
+  EXPECT_LT(none.slip, half.slip);
+  EXPECT_LT(half.slip, full.slip);
+}
+
+TEST(CvtRun, SameInputsSameBits) {
+  const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  CvtRunOptions opt;
+  opt.loadTorque = 80.0;
+  opt.duration = 0.005;
+  const CvtRunResult a = runCvt(model, opt), b = runCvt(model, opt);
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  for (std::size_t k = 0; k < a.samples.size(); ++k) {
+    EXPECT_EQ(a.samples[k].cvt.drivenSpeed, b.samples[k].cvt.drivenSpeed);
+    EXPECT_EQ(a.samples[k].cvt.tightStrandForce, b.samples[k].cvt.tightStrandForce);
+  }
+}
+
+TEST(CvtRun, MethodsWithoutPinSheaveJacobiansAreRefused) {
+  const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  for (const char* method : {"cvode-bdf-klu", "fixed-newmark", "fixed-verlet-implicit-damping"}) {
+    SimulationOptions so;
+    so.integrator.method = method;
+    try {
+      Simulation sim(model, so, std::make_unique<HeldInputs>(*model));
+      FAIL() << method << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("allowed on a CVT"), std::string::npos) << e.what();
+    }
+  }
+  SimulationOptions so;
+  so.contactMethod = "time-stepping";
+  EXPECT_THROW(Simulation(model, so, std::make_unique<HeldInputs>(*model)), std::invalid_argument);
+}
