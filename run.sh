@@ -3,6 +3,7 @@
 # Debian packages, a Python virtual environment, the build):
 #
 #   ./run.sh main   runs the main job on the default drive: results, plots and a summary
+#                   (--scene cvt: on the default chain CVT)
 #   ./run.sh test   runs all tests (C++ unit and system tests with ctest, Python tests with pytest),
 #                   then the sanitizer stage: the C++ tests and the FMI call-sequence fuzz built
 #                   with AddressSanitizer and UndefinedBehaviorSanitizer (any report fails it)

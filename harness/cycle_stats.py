@@ -156,6 +156,6 @@ def summary(d, run_in_cycles, meshing_order):
     return summarize(per_cycle(d, run_in_cycles, meshing_order))
 
 
-def format_line(key, s):
+def format_line(key, s, periods="cycles"):
     rel = 100.0 * s["ci95"] / abs(s["mean"]) if s["mean"] else math.nan
-    return f"  {key:<40} {s['mean']:12.4g} +- {s['ci95']:<10.3g} {s['unit']:<4} ({rel:5.2f} %, {s['cycles']} cycles)"
+    return f"  {key:<40} {s['mean']:12.4g} +- {s['ci95']:<10.3g} {s['unit']:<4} ({rel:5.2f} %, {s['cycles']} {periods})"

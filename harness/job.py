@@ -26,9 +26,12 @@ Two couplings:
   open              the tables turned into time series at the mean speed and passed to
                     fmpy.simulate_fmu as input.
 
+The chain CVT (--scene cvt, paper example 4.1) has a main job of its own: harness/cvt/job.py.
+
     python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in S]
                           [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
                           [--solver-step S] [--newmark-gamma G] [--drive FILE] [--out results]
+    python -m harness run --scene cvt [--rpm 2000] [--load-torque 80] [--revolutions 8] [--cvt FILE]
 
 Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
 cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.
@@ -44,6 +47,7 @@ import time
 import numpy as np
 
 from . import cycle_stats, paths
+from .cvt import job as cvt_job
 from .drive.description import drive_json, meshing_order
 from .fmu import fmu
 from .plots import drive_picture, plots
@@ -181,9 +185,23 @@ def write_csv(path, d):
         np.savetxt(f, np.column_stack([d[c] for c in cols]), delimiter=",", fmt="%.10g")
 
 
+SCENES = ("timing", "cvt")  # the roller-chain timing drive (this module), the chain CVT (harness/cvt/job.py)
+
+
 def add_arguments(ap):
+    ap.add_argument("--scene", choices=SCENES, default="timing",
+                    help="timing: the roller-chain timing drive through ChainDrive.fmu (default); cvt: the chain CVT "
+                    "(paper example 4.1, harness/cvt/job.py)")
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
-    ap.add_argument("--rpm", type=float, default=3000.0, help="mean engine speed [rpm], 1000-6000 (tables)")
+    ap.add_argument("--rpm", type=float, help="mean engine speed [rpm], 1000-6000 (tables; default 3000); cvt: the "
+                    f"driving-pulley speed (default {cvt_job.DEFAULT_RPM:g})")
+    ap.add_argument("--cvt", help="cvt: the CVT description (default: the embedded default CVT)")
+    ap.add_argument("--load-torque", type=float, default=cvt_job.DEFAULT_LOAD,
+                    help=f"cvt: the load torque on the driven pulley [N m] (default {cvt_job.DEFAULT_LOAD:g})")
+    ap.add_argument("--revolutions", type=int, default=cvt_job.DEFAULT_REVOLUTIONS,
+                    help=f"cvt: chain revolutions counted after the run-in (default {cvt_job.DEFAULT_REVOLUTIONS})")
+    ap.add_argument("--run-in-revolutions", type=int, default=cvt_job.RUN_IN_REVOLUTIONS,
+                    help=f"cvt: chain revolutions discarded first (default {cvt_job.RUN_IN_REVOLUTIONS})")
     ap.add_argument("--fidelity", choices=FIDELITIES, default="link",
                     help="FMU parameter fidelity: link (link-by-link model, default) or span (span model)")
     ap.add_argument("--cycles", type=int, default=DEFAULT_CYCLES,
@@ -202,12 +220,35 @@ def add_arguments(ap):
 
 
 def check(ap, args):
+    if args.scene == "cvt":
+        return check_cvt(ap, args)
+    if args.rpm is None:
+        args.rpm = 3000.0
     if args.cycles < 2:
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
     if args.run_in is not None and args.run_in < 0:
         ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
     if args.solver_step is None:
         args.solver_step = SOLVER_STEP[args.fidelity]
+    return args
+
+
+def check_cvt(ap, args):
+    """The CVT's options: the timing drive's that do not apply are refused, the defaults its own."""
+    for option, value, default in (("--drive", args.drive, None), ("--fidelity", args.fidelity, "link"),
+                                   ("--coupling", args.coupling, "closed"), ("--tables", args.tables, None)):
+        if value != default:
+            ap.error(f"{option} {value}: does not apply to the CVT scene (solver alone, link fidelity)")
+    if args.revolutions < 2:
+        ap.error(f"--revolutions {args.revolutions}: at least 2 counted revolutions are needed for a confidence interval")
+    if args.run_in_revolutions < 0:
+        ap.error(f"--run-in-revolutions {args.run_in_revolutions}: must be >= 0")
+    if args.rpm is None:
+        args.rpm = cvt_job.DEFAULT_RPM
+    if not 0.0 < args.rpm <= 10000.0:
+        ap.error(f"--rpm {args.rpm:g}: the driving speed must lie in (0, 10000] rpm")
+    if args.solver_step is None:
+        args.solver_step = cvt_job.DEFAULT_STEP
     return args
 
 
@@ -317,6 +358,9 @@ def report(summary, scene_run):
 
 
 def run(args):
+    if args.scene == "cvt":
+        args.out_path = pathlib.Path(args.out)
+        return cvt_job.run(args)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     scene_run = simulate(args)

@@ -68,14 +68,15 @@ void writeCsv(const std::string& path, const CvtRunResult& r) {
   if (!f) throw std::runtime_error("cannot write " + path);
   f << "time,drivingSpeed,drivenSpeed,slip,tightStrandForce,slackStrandForce,clampingForceDriving,"
        "clampingForceDriven,drivingTorque,drivenTorque,powerLoss,pinPulley,pinNormalForce,pinRadialFriction,"
-       "pinCircumferentialFriction,pinAxialForce,linkTension\n";
-  char line[512];
+       "pinCircumferentialFriction,pinAxialForce,linkTension,inputWork,dissipatedEnergy\n";
+  char line[640];
   for (const CvtSample& s : r.samples) {
     const CvtOutputs& c = s.cvt;
-    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.12g,%.12g\n",
                   s.time, c.drivingSpeed, c.drivenSpeed, c.slip, c.tightStrandForce, c.slackStrandForce,
                   c.clampingForce[0], c.clampingForce[1], c.drivingTorque, c.drivenTorque, c.powerLoss, c.pinPulley,
-                  c.pinNormalForce, c.pinRadialFriction, c.pinCircumferentialFriction, c.pinAxialForce, c.linkTension);
+                  c.pinNormalForce, c.pinRadialFriction, c.pinCircumferentialFriction, c.pinAxialForce, c.linkTension,
+                  s.energy.inputWork, s.energy.dissipated);
     f << line;
   }
 }
