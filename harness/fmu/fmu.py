@@ -1,5 +1,5 @@
-"""ChainDrive.fmu from Python: a thin wrapper around fmpy's FMU2Slave for master loops, with the
-FMU's log messages collected."""
+"""ChainDrive.fmu (and CVTChain.fmu) from Python: a thin wrapper around fmpy's FMU2Slave for master
+loops, with the FMU's log messages collected."""
 import functools
 import math
 import time
@@ -13,8 +13,9 @@ from .. import paths
 INPUTS = ("crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau")
 
 
-def fmu_path():
-    path = paths.BUILD / "ChainDrive.fmu"
+def fmu_path(name="ChainDrive"):
+    """The built FMU: ChainDrive (the timing drive) or CVTChain (the chain CVT)."""
+    path = paths.BUILD / f"{name}.fmu"
     if not path.exists():
         raise FileNotFoundError(f"{path} not found; build first (./run.sh builds it)")
     return path

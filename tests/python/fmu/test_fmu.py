@@ -35,8 +35,9 @@ def test_validate_fmu_reports_no_problems():
     assert validate_fmu(str(fmu.fmu_path())) == []
 
 
-def test_binary_exports_only_fmi2_and_links_only_libc_libm():
-    so = paths.BUILD / "ChainDrive.so"
+@pytest.mark.parametrize("binary", ["ChainDrive.so", "CVTChain.so"])
+def test_binary_exports_only_fmi2_and_links_only_libc_libm(binary):
+    so = paths.BUILD / binary
     nm = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True, check=True).stdout
     names = [line.split()[-1] for line in nm.splitlines() if line.strip()]
     assert names and all(n.startswith("fmi2") for n in names), [n for n in names if not n.startswith("fmi2")]
@@ -47,14 +48,15 @@ def test_binary_exports_only_fmi2_and_links_only_libc_libm():
     assert all(any(l.startswith(a) for a in allowed) for l in libs), libs
 
 
-def test_model_description_and_glue_agree():
-    """modelDescription.xml is the single source; fmu/variables.h mirrors it."""
-    root = ET.parse(paths.ROOT / "modelDescription" / "modelDescription.xml").getroot()
+@pytest.mark.parametrize("description, header", [("modelDescription.xml", "chaindrive"), ("CVTChain.xml", "cvt")])
+def test_model_description_and_glue_agree(description, header):
+    """The model description is the single source; the adapter's variables.h mirrors it (both FMUs)."""
+    root = ET.parse(paths.ROOT / "modelDescription" / description).getroot()
     xml = {}
     for sv in root.iter("ScalarVariable"):
         typ = [c for c in sv if c.tag in ("Real", "Integer", "Boolean", "String")][0]
         xml[sv.get("name")] = (int(sv.get("valueReference")), typ.tag, sv.get("causality"), typ.get("start", ""))
-    header = (paths.ROOT / "fmu" / "variables.h").read_text()
+    header = (paths.ROOT / "fmu" / header / "variables.h").read_text()
     vrs = dict(re.findall(r"\b(k\w+) = (\d+),", header))
     glue = {}
     for name, vr, typ, caus, start in re.findall(

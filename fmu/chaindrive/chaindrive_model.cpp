@@ -1,0 +1,266 @@
+#include "chaindrive_model.h"
+
+#include <cmath>
+
+#include "description/drive_description.h"
+
+namespace chaindrive::fmu {
+
+namespace {
+
+// What a Real output is read from: the solver outputs at the current state and the rotors' roles.
+struct OutputView {
+  const Outputs& out;
+  const RotorRoles& roles;
+};
+
+// A rotor's quantity; 0 when the drive has no rotor of that role.
+double rotor(int r, const std::vector<double>& a) { return r >= 0 ? a[r] : 0.0; }
+
+struct RealOutput {
+  unsigned vr;
+  double (*read)(const OutputView& s);
+};
+
+// clang-format off
+constexpr RealOutput kRealOutputs[] = {
+  {kCrankshaftPhi,            [](const OutputView& s) { return rotor(s.roles.crank, s.out.rotorAngle); }},
+  {kCrankshaftTau,            [](const OutputView& s) { return s.out.crankTorque; }},
+  {kCamshaftIntakePhi,        [](const OutputView& s) { return rotor(s.roles.intake, s.out.rotorAngle); }},
+  {kCamshaftIntakeW,          [](const OutputView& s) { return rotor(s.roles.intake, s.out.rotorRate); }},
+  {kCamshaftExhaustPhi,       [](const OutputView& s) { return rotor(s.roles.exhaust, s.out.rotorAngle); }},
+  {kCamshaftExhaustW,         [](const OutputView& s) { return rotor(s.roles.exhaust, s.out.rotorRate); }},
+  {kTensionGuidePhi,          [](const OutputView& s) { return rotor(s.roles.tensionGuide, s.out.rotorAngle); }},
+  {kTensionGuideW,            [](const OutputView& s) { return rotor(s.roles.tensionGuide, s.out.rotorRate); }},
+  {kTensionerF,               [](const OutputView& s) { return s.out.tensionerForce; }},
+  {kTensionerS,               [](const OutputView& s) { return s.out.tensionerStroke; }},
+  {kTensionerV,               [](const OutputView& s) { return s.out.tensionerRate; }},
+  {kChainFtight,              [](const OutputView& s) { return s.out.tightSpanForce; }},
+  {kChainFslack,              [](const OutputView& s) { return s.out.slackSpanForce; }},
+  {kLinkF,                    [](const OutputView& s) { return s.out.linkTension; }},
+  {kLinkFn,                   [](const OutputView& s) { return s.out.linkNormalForce; }},
+  {kLinkFnSprocket,           [](const OutputView& s) { return s.out.linkSprocketForce; }},
+  {kLinkFnGuide,              [](const OutputView& s) { return s.out.linkGuideForce; }},
+  {kLinkX,                    [](const OutputView& s) { return s.out.linkPosition.x; }},
+  {kLinkY,                    [](const OutputView& s) { return s.out.linkPosition.y; }},
+  {kEnergyKinetic,            [](const OutputView& s) { return s.out.energy.kinetic; }},
+  {kEnergyElastic,            [](const OutputView& s) { return s.out.energy.elastic; }},
+  {kEnergyDissipated,         [](const OutputView& s) { return s.out.energy.dissipated; }},
+  {kEnergyInput,              [](const OutputView& s) { return s.out.energy.inputWork; }},
+  {kChainMaxJointDeformation, [](const OutputView& s) { return s.out.maxJointDeformation; }},
+};
+// clang-format on
+
+const RealOutput* findRealOutput(unsigned vr) {
+  for (const RealOutput& o : kRealOutputs)
+    if (o.vr == vr) return &o;
+  return nullptr;
+}
+
+}  // namespace
+
+// ---- preparation ----
+
+// The model, the roles of its rotors and the start state, from the parameters: a table of
+// contents of the steps below. Any failure is logged and leaves the instance unprepared.
+fmi2Status ChainDriveModel::prepare() {
+  dropSimulation();
+  if (!parametersValid()) return fmi2Error;
+  try {
+    DriveDescription desc =
+        describedBy(params_.driveFile, "default_drive.json", "drive", loadDriveDescription, defaultDriveDescription);
+    if (!applyTensionerOverrides(desc)) return fmi2Error;
+    model_ = std::make_shared<const Model>(assemble(desc));
+    if (!assignRoles(*model_)) {
+      dropSimulation();
+      return fmi2Error;
+    }
+    startSimulation();
+    prepared_ = true;
+    return fmi2OK;
+  } catch (const DescriptionError& e) {
+    for (const auto& p : e.problems()) host_.log(fmi2Error, "logStatusError", "drive description: %s", p.c_str());
+  } catch (const std::exception& e) {
+    host_.log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
+  }
+  dropSimulation();
+  return fmi2Error;
+}
+
+void ChainDriveModel::reset() {
+  resetRun();
+  params_ = Parameters{};
+  in_ = kInputStarts;
+}
+
+// Every parameter problem is logged (all of them at once); false if there was one.
+bool ChainDriveModel::parametersValid() {
+  std::vector<std::string> problems;
+  checkChoices(problems);
+  checkRanges(problems);
+  for (const auto& p : problems) host_.log(fmi2Error, "logStatusError", "%s", p.c_str());
+  return problems.empty();
+}
+
+// The named choices: fidelity, integrator, contact method, joint model.
+void ChainDriveModel::checkChoices(std::vector<std::string>& problems) const {
+  const bool span = params_.fidelity == "span";
+  if (!span && params_.fidelity != "link")
+    problems.push_back("fidelity: '" + params_.fidelity + "' is unknown; allowed: link, span");
+  bool knownMethod = false;
+  std::string methods;
+  for (const auto& n : integratorNames()) {
+    knownMethod = knownMethod || n == params_.method;
+    methods += (methods.empty() ? "" : ", ") + n;
+  }
+  if (!knownMethod) problems.push_back("solver.method: '" + params_.method + "' is unknown; allowed: " + methods);
+  if (!params_.contactMethod.empty() && params_.contactMethod != "compliant" && params_.contactMethod != "event-driven" &&
+      params_.contactMethod != "time-stepping")
+    problems.push_back("contact.method: '" + params_.contactMethod +
+                       "' is unknown; allowed: compliant, event-driven, time-stepping (or empty: the drive's)");
+  if (!params_.jointModel.empty() && params_.jointModel != "journal-bearing" && params_.jointModel != "ideal")
+    problems.push_back("chain.jointModel: '" + params_.jointModel +
+                       "' is unknown; allowed: journal-bearing, ideal (or empty: the drive's)");
+  // the span fidelity has spans, no contacts, and takes its span stiffness from journal bearings
+  // (a drive description that asks for other ones is refused when the simulation is built)
+  if (span && (params_.contactMethod == "event-driven" || params_.contactMethod == "time-stepping"))
+    problems.push_back("contact.method: '" + params_.contactMethod +
+                       "' does not apply to fidelity 'span'; allowed with it: compliant (or empty: the drive's)");
+  const bool linkOnly = params_.method == "fixed-newmark" || params_.method.rfind("fixed-verlet-implicit", 0) == 0;
+  if (span && linkOnly)
+    problems.push_back("solver.method: '" + params_.method + "' does not apply to fidelity 'span' (its implicit part "
+                       "is the links' joints and contacts); allowed with it: the other methods");
+  if (span && params_.jointModel == "ideal")
+    problems.push_back("chain.jointModel: 'ideal' does not apply to fidelity 'span'; allowed with it: journal-bearing "
+                       "(or empty: the drive's)");
+}
+
+// The numbers: solver tolerance and step, the tensioner overrides (negative: as in the drive).
+void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
+  if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
+    problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
+  if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
+    problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed [1e-9, 1e-3] s");
+  if (!(params_.newmarkGamma >= 0.5 && params_.newmarkGamma <= 1.0))
+    problems.push_back("solver.newmarkGamma: " + std::to_string(params_.newmarkGamma) + " is out of range; allowed [0.5, 1]");
+  auto checkOverride = [&](double v, const char* name, double hi) {
+    if (!std::isfinite(v) || v > hi)
+      problems.push_back(std::string(name) + ": " + std::to_string(v) + " is out of range; allowed a negative value (as in "
+                         "the drive description) or [0, " + std::to_string(hi) + "]");
+  };
+  checkOverride(params_.tensionerPreload, "tensioner.preload", 1e5);
+  checkOverride(params_.tensionerStiffness, "tensioner.stiffness", 1e9);
+  checkOverride(params_.tensionerDamping, "tensioner.damping", 1e7);
+  checkOverride(params_.tensionerDampingExtension, "tensioner.dampingExtension", 1e7);
+}
+
+// The tensioner parameters (negative: as in the drive); false if the drive has no tensioner.
+bool ChainDriveModel::applyTensionerOverrides(DriveDescription& desc) {
+  const bool overrides = params_.tensionerPreload >= 0 || params_.tensionerStiffness >= 0 ||
+                         params_.tensionerDamping >= 0 || params_.tensionerDampingExtension >= 0;
+  if (overrides && !desc.tensioner.present) {
+    host_.log(fmi2Error, "logStatusError", "tensioner.*: the drive has no tensioner to apply the parameters to");
+    return false;
+  }
+  if (params_.tensionerPreload >= 0) desc.tensioner.preload = params_.tensionerPreload;
+  if (params_.tensionerStiffness >= 0) desc.tensioner.stiffness = params_.tensionerStiffness;
+  if (params_.tensionerDamping >= 0) desc.tensioner.damping = params_.tensionerDamping;
+  if (params_.tensionerDampingExtension >= 0) desc.tensioner.dampingExtension = params_.tensionerDampingExtension;
+  return true;
+}
+
+// The rotors the FMU's inputs and outputs refer to, and the monitored link's range.
+bool ChainDriveModel::assignRoles(const Model& m) {
+  if (params_.linkIndex < -1 || params_.linkIndex >= m.chain.links) {
+    host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (as in the drive) or 0..%d",
+              params_.linkIndex, m.chain.links - 1);
+    return false;
+  }
+  roles_ = RotorRoles{};
+  roles_.crank = m.drivenRotor;
+  if (roles_.crank < 0) {
+    host_.log(fmi2Error, "logStatusError", "the drive has no sprocket with motion 'prescribed' to follow crankshaft.w");
+    return false;
+  }
+  roles_.intake = m.rotorIndex("camshaftIntake");
+  roles_.exhaust = m.rotorIndex("camshaftExhaust");
+  roles_.tensionGuide = m.tensioner.present ? m.tensioner.rotor : -1;
+  if (roles_.intake < 0 || roles_.exhaust < 0)
+    host_.log(fmi2Warning, "logStatusWarning",
+              "the drive has no sprocket named camshaftIntake and/or camshaftExhaust: their inputs have no effect and "
+              "their outputs are zero");
+  return true;
+}
+
+// The simulation of model_ with the solver parameters, at its start state on the time grid.
+void ChainDriveModel::startSimulation() {
+  SimulationOptions opt;
+  opt.fidelity = params_.fidelity;
+  opt.integrator.method = params_.method;
+  opt.integrator.adaptive.rtol = params_.tolerance;
+  opt.integrator.fixed.step = params_.step;
+  opt.integrator.newmark.gamma = params_.newmarkGamma;
+  opt.integrator.adaptive.stopAtOutputs = true;
+  opt.contactMethod = params_.contactMethod;
+  opt.jointModel = params_.jointModel;
+  opt.preload.enabled = params_.preload;
+  opt.monitoredLink = params_.linkIndex;
+  makeSimulation(opt);
+  sim_->start(host_.time());
+  // what the start state solve found
+  const PreloadReport& rep = sim_->preloadReport();
+  host_.log(rep.converged ? fmi2OK : fmi2Warning, rep.converged ? "logEvents" : "logStatusWarning",
+            "start state: %s (%.3f s CPU)", rep.message.c_str(), rep.cpuSeconds);
+  runStarted();
+}
+
+void ChainDriveModel::applyInputs() {
+  if (!held_) return;
+  InputValues& v = held_->values;
+  v.crankSpeed = in_[kInCrankSpeed];
+  if (roles_.intake >= 0) v.loadTorque[roles_.intake] = in_[kInTauIntake];
+  if (roles_.exhaust >= 0) v.loadTorque[roles_.exhaust] = in_[kInTauExhaust];
+}
+
+// ---- values by value reference ----
+
+double* ChainDriveModel::realSetting(unsigned vr) {
+  switch (vr) {
+    case kCrankshaftW: return &in_[kInCrankSpeed];
+    case kCamshaftIntakeTau: return &in_[kInTauIntake];
+    case kCamshaftExhaustTau: return &in_[kInTauExhaust];
+    case kSolverTolerance: return &params_.tolerance;
+    case kSolverStep: return &params_.step;
+    case kSolverNewmarkGamma: return &params_.newmarkGamma;
+    case kTensionerPreload: return &params_.tensionerPreload;
+    case kTensionerStiffness: return &params_.tensionerStiffness;
+    case kTensionerDamping: return &params_.tensionerDamping;
+    case kTensionerDampingExtension: return &params_.tensionerDampingExtension;
+    default: return nullptr;
+  }
+}
+
+std::string* ChainDriveModel::stringParameter(unsigned vr) {
+  switch (vr) {
+    case kDriveFile: return &params_.driveFile;
+    case kSolverMethod: return &params_.method;
+    case kContactMethod: return &params_.contactMethod;
+    case kChainJointModel: return &params_.jointModel;
+    case kFidelity: return &params_.fidelity;
+    default: return nullptr;
+  }
+}
+
+bool ChainDriveModel::readRealOutput(unsigned vr, double& value) const {
+  const RealOutput* output = findRealOutput(vr);
+  if (output) value = output->read(OutputView{out_, roles_});
+  return output != nullptr;
+}
+
+bool ChainDriveModel::readIntegerOutput(unsigned vr, int& value) const {
+  if (vr != kContacts) return false;
+  value = out_.contacts;
+  return true;
+}
+
+}  // namespace chaindrive::fmu

@@ -1,0 +1,80 @@
+// The model adapter of ChainDrive.fmu (Reference-FMUs' model.c): the parameters and their
+// validation, the preparation of the drive and its start state, the inputs and the outputs by
+// value reference; the values' checks, the communication step and the FMU state's solver part
+// are SimulationAdapter's (simulation_adapter.h). The protocol (host.h, instance.h, fmu_state.h,
+// fmi2_functions.cpp) calls it through the members listed in model_adapter.h. Adding an output
+// touches modelDescription.xml, variables.h and the output table in chaindrive_model.cpp only.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "simulation_adapter.h"
+
+namespace chaindrive::fmu {
+
+/// The rotors the FMU's inputs and outputs refer to (-1: the drive has none of that role).
+struct RotorRoles {
+  int crank = -1, intake = -1, exhaust = -1, tensionGuide = -1;
+};
+
+/// The Real inputs, in the order of SimulationAdapter's input array.
+enum ChainDriveInput { kInCrankSpeed = 0, kInTauIntake = 1, kInTauExhaust = 2, kChainDriveInputs = 3 };
+
+class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInputs> {
+ public:
+  /// The first bytes of a serialized state of this model.
+  // '3': the link states laid out component by component (src/assembly/model.h)
+  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '3'};
+  static constexpr const char* kModelWord = "drive";  // (what a state must have been taken of)
+
+  explicit ChainDriveModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
+
+  // preparation: the drive, the roles of its rotors and the start state at host.time()
+  fmi2Status prepare();
+  void reset();  // parameters and inputs to their start values
+
+ private:
+  friend class SimulationAdapter<ChainDriveModel, kChainDriveInputs>;
+  static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0};
+
+  struct Parameters {
+    std::string driveFile;
+    int linkIndex = -1;
+    std::string method = "fixed-verlet";
+    std::string contactMethod;  // "": the drive's
+    std::string jointModel;     // "": the drive's
+    std::string fidelity = "link";  // "link" or "span" (SimulationOptions::fidelity)
+    double tolerance = 1e-5;
+    double step = 2.5e-6;
+    double newmarkGamma = 0.5;
+    bool preload = true;
+    double tensionerPreload = -1.0, tensionerStiffness = -1.0, tensionerDamping = -1.0,
+           tensionerDampingExtension = -1.0;
+  };
+
+  // the steps of prepare()
+  bool parametersValid();
+  void checkChoices(std::vector<std::string>& problems) const;
+  void checkRanges(std::vector<std::string>& problems) const;
+  bool applyTensionerOverrides(DriveDescription& desc);
+  bool assignRoles(const Model& m);
+  void startSimulation();
+
+  // what SimulationAdapter asks of its model (simulation_adapter.h)
+  void applyInputs();
+  void evaluateOutputs() { out_ = sim_->outputs(); }
+  double* realSetting(unsigned vr);  // a Real parameter or input; nullptr for others
+  std::string* stringParameter(unsigned vr);
+  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
+  bool* booleanParameter(unsigned vr) { return vr == kSolverPreload ? &params_.preload : nullptr; }
+  bool readRealOutput(unsigned vr, double& value) const;
+  bool readIntegerOutput(unsigned vr, int& value) const;
+
+  Parameters params_;
+  RotorRoles roles_;
+  Outputs out_;
+};
+
+}  // namespace chaindrive::fmu

@@ -1,0 +1,177 @@
+#include "cvt_model.h"
+
+#include <cmath>
+
+#include "cvt/cvt_assembly.h"
+
+namespace chaindrive::fmu {
+
+namespace {
+
+// What a Real output is read from: the shared outputs and the CVT's at the current state.
+struct OutputView {
+  const Outputs& out;
+  const CvtOutputs& cvt;
+};
+
+struct RealOutput {
+  unsigned vr;
+  double (*read)(const OutputView& s);
+};
+
+// clang-format off
+constexpr RealOutput kRealOutputs[] = {
+  {kDrivingPulleyPhi,            [](const OutputView& s) { return s.out.rotorAngle[kDrivingPulley]; }},
+  {kDrivingPulleyTau,            [](const OutputView& s) { return s.cvt.drivingTorque; }},
+  {kDrivenPulleyPhi,             [](const OutputView& s) { return s.out.rotorAngle[kDrivenPulley]; }},
+  {kDrivenPulleyW,               [](const OutputView& s) { return s.cvt.drivenSpeed; }},
+  {kDrivenPulleyTau,             [](const OutputView& s) { return s.cvt.drivenTorque; }},
+  {kSlip,                        [](const OutputView& s) { return s.cvt.slip; }},
+  {kChainFtight,                 [](const OutputView& s) { return s.cvt.tightStrandForce; }},
+  {kChainFslack,                 [](const OutputView& s) { return s.cvt.slackStrandForce; }},
+  {kDrivingPulleyFclamp,         [](const OutputView& s) { return s.cvt.clampingForce[kDrivingPulley]; }},
+  {kDrivenPulleyFclamp,          [](const OutputView& s) { return s.cvt.clampingForce[kDrivenPulley]; }},
+  {kPowerLoss,                   [](const OutputView& s) { return s.cvt.powerLoss; }},
+  {kPinFn,                       [](const OutputView& s) { return s.cvt.pinNormalForce; }},
+  {kPinFfrictionRadial,          [](const OutputView& s) { return s.cvt.pinRadialFriction; }},
+  {kPinFfrictionCircumferential, [](const OutputView& s) { return s.cvt.pinCircumferentialFriction; }},
+  {kLinkF,                       [](const OutputView& s) { return s.cvt.linkTension; }},
+  {kEnergyKinetic,               [](const OutputView& s) { return s.out.energy.kinetic; }},
+  {kEnergyElastic,               [](const OutputView& s) { return s.out.energy.elastic; }},
+  {kEnergyDissipated,            [](const OutputView& s) { return s.out.energy.dissipated; }},
+  {kEnergyInput,                 [](const OutputView& s) { return s.out.energy.inputWork; }},
+};
+// clang-format on
+
+// The methods a CVT runs with (Simulation refuses the others, cvt/ and simulation.cpp).
+const char* const kCvtMethods[] = {"fixed-verlet", "fixed-verlet-implicit-joint-damping", "arkode-erk",
+                                   "arkode-erk-fixed"};
+
+}  // namespace
+
+// ---- preparation ----
+
+// The CVT and its start state from the parameters; any failure is logged and leaves the instance
+// unprepared.
+fmi2Status CvtChainModel::prepare() {
+  dropSimulation();
+  if (!parametersValid()) return fmi2Error;
+  try {
+    CvtDescription desc = describedBy(params_.cvtFile, "default_cvt.json", "CVT", loadCvtDescription, defaultCvtDescription);
+    if (params_.ratio >= 0.0) desc.ratio = params_.ratio;
+    if (params_.clampingForce >= 0.0) desc.clampingForce = params_.clampingForce;
+    model_ = std::make_shared<const Model>(assembleCvt(desc));
+    if (params_.linkIndex < -1 || params_.linkIndex >= model_->chain.links) {
+      host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (link 0) or 0..%d",
+                params_.linkIndex, model_->chain.links - 1);
+      dropSimulation();
+      return fmi2Error;
+    }
+    startSimulation();
+    prepared_ = true;
+    return fmi2OK;
+  } catch (const DescriptionError& e) {
+    for (const auto& p : e.problems()) host_.log(fmi2Error, "logStatusError", "CVT description: %s", p.c_str());
+  } catch (const std::exception& e) {
+    host_.log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
+  }
+  dropSimulation();
+  return fmi2Error;
+}
+
+void CvtChainModel::reset() {
+  resetRun();
+  params_ = Parameters{};
+  in_ = kInputStarts;
+}
+
+// Every parameter problem is logged (all of them at once); false if there was one.
+bool CvtChainModel::parametersValid() {
+  std::vector<std::string> problems;
+  bool known = false;
+  std::string methods;
+  for (const char* m : kCvtMethods) {
+    known = known || params_.method == m;
+    methods += (methods.empty() ? "" : ", ") + std::string(m);
+  }
+  if (!known)
+    problems.push_back("solver.method: '" + params_.method + "' is not one a CVT runs with; allowed: " + methods);
+  if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
+    problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
+  if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
+    problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed [1e-9, 1e-3] s");
+  if (params_.ratio >= 0.0 && !(params_.ratio >= 0.2 && params_.ratio <= 5.0))
+    problems.push_back("ratio: " + std::to_string(params_.ratio) + " is out of range; allowed a negative value (as in "
+                       "the CVT description) or [0.2, 5]");
+  if (params_.clampingForce > 1e6)
+    problems.push_back("clampingForce: " + std::to_string(params_.clampingForce) + " N is out of range; allowed a "
+                       "negative value (as in the CVT description) or [0, 1e6] N");
+  for (const auto& p : problems) host_.log(fmi2Error, "logStatusError", "%s", p.c_str());
+  return problems.empty();
+}
+
+// The simulation from the nominal state at the driving speed input (the chain moving with the
+// pulleys, pre-tensioned by the clamping force), on the time grid from the start time.
+void CvtChainModel::startSimulation() {
+  SimulationOptions opt;
+  opt.integrator.method = params_.method;
+  opt.integrator.adaptive.rtol = params_.tolerance;
+  opt.integrator.fixed.step = params_.step;
+  opt.integrator.adaptive.stopAtOutputs = true;
+  opt.monitoredLink = params_.linkIndex;
+  makeSimulation(opt);
+  sim_->startFrom(host_.time(), cvtNominalState(*model_, in_[kInDrivingSpeed]));
+  for (const std::string& note : model_->assembly.notes) host_.log(fmi2OK, "logEvents", "assembly: %s", note.c_str());
+  runStarted();
+}
+
+void CvtChainModel::applyInputs() {
+  if (!held_) return;
+  held_->values.crankSpeed = in_[kInDrivingSpeed];
+  held_->values.loadTorque[kDrivenPulley] = in_[kInLoadTorque];
+}
+
+void CvtChainModel::evaluateOutputs() {
+  out_ = sim_->outputs();
+  cvt_ = cvtOutputs(*model_, *sim_->outputData(), out_, params_.linkIndex);
+}
+
+// ---- values by value reference ----
+
+double* CvtChainModel::realSetting(unsigned vr) {
+  switch (vr) {
+    case kDrivingPulleyW: return &in_[kInDrivingSpeed];
+    case kDrivenPulleyTauLoad: return &in_[kInLoadTorque];
+    case kSolverTolerance: return &params_.tolerance;
+    case kSolverStep: return &params_.step;
+    case kRatio: return &params_.ratio;
+    case kClampingForce: return &params_.clampingForce;
+    default: return nullptr;
+  }
+}
+
+std::string* CvtChainModel::stringParameter(unsigned vr) {
+  switch (vr) {
+    case kCvtFile: return &params_.cvtFile;
+    case kSolverMethod: return &params_.method;
+    default: return nullptr;
+  }
+}
+
+bool CvtChainModel::readRealOutput(unsigned vr, double& value) const {
+  for (const RealOutput& o : kRealOutputs)
+    if (o.vr == vr) {
+      value = o.read(OutputView{out_, cvt_});
+      return true;
+    }
+  return false;
+}
+
+bool CvtChainModel::readIntegerOutput(unsigned vr, int& value) const {
+  if (vr == kContacts) value = out_.contacts;
+  else if (vr == kPinPulley) value = cvt_.pinPulley;
+  else return false;
+  return true;
+}
+
+}  // namespace chaindrive::fmu

@@ -1,0 +1,66 @@
+// The model adapter of CVTChain.fmu: the chain CVT (src/cvt/) for transmission and vehicle
+// simulation. Its parameters and their validation, the preparation of the CVT and its start
+// state (the nominal state at the driving speed input), the inputs and the outputs by value
+// reference; the values' checks, the communication step and the FMU state's solver part are
+// SimulationAdapter's (simulation_adapter.h), as for ChainDrive.fmu. The transmission ratio and
+// the clamping force are parameters: the sheaves stand still during a run.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "cvt/cvt_description.h"
+#include "cvt/cvt_outputs.h"
+#include "simulation_adapter.h"
+
+namespace chaindrive::fmu {
+
+/// The Real inputs, in the order of SimulationAdapter's input array.
+enum CvtInput { kInDrivingSpeed = 0, kInLoadTorque = 1, kCvtInputs = 2 };
+
+class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
+ public:
+  /// The first bytes of a serialized state of this model.
+  static constexpr char kStateMagic[8] = {'C', 'V', 'T', 'C', 'H', 'S', 'T', '1'};
+  static constexpr const char* kModelWord = "CVT";  // (what a state must have been taken of)
+
+  explicit CvtChainModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
+
+  fmi2Status prepare();
+  void reset();
+
+ private:
+  friend class SimulationAdapter<CvtChainModel, kCvtInputs>;
+  static constexpr std::array<double, kCvtInputs> kInputStarts = {209.43951023931953, 0.0};
+
+  struct Parameters {
+    std::string cvtFile;
+    int linkIndex = -1;
+    std::string method = "fixed-verlet";
+    double tolerance = 1e-5;
+    double step = 5e-7;
+    double ratio = -1.0;          // < 0: the description's
+    double clampingForce = -1.0;  // < 0: the description's
+  };
+
+  // the steps of prepare()
+  bool parametersValid();
+  void startSimulation();
+
+  // what SimulationAdapter asks of its model (simulation_adapter.h)
+  void applyInputs();
+  void evaluateOutputs();
+  double* realSetting(unsigned vr);
+  std::string* stringParameter(unsigned vr);
+  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
+  bool* booleanParameter(unsigned) { return nullptr; }
+  bool readRealOutput(unsigned vr, double& value) const;
+  bool readIntegerOutput(unsigned vr, int& value) const;
+
+  Parameters params_;
+  Outputs out_;
+  CvtOutputs cvt_;
+};
+
+}  // namespace chaindrive::fmu
