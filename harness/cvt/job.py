@@ -38,15 +38,17 @@ QUANTITIES = {"slip": ("slip", ""), "drivenSpeed": ("drivenSpeed", "rad/s"),
               "drivingTorque": ("drivingTorque", "N m"), "drivenTorque": ("drivenTorque", "N m")}
 
 
-def simulate(args, out):
-    """Runs chaindrive-cvt over the run-in and the counted revolutions; returns (record, its JSON)."""
+def simulate(args, out, quiet=False):
+    """Runs chaindrive-cvt over the run-in and the counted revolutions; returns (record, its JSON).
+    A failed run raises RuntimeError with the solver's message."""
     csv = out / "cvt_outputs.csv"
     probe = _run(args, 1e-3, None)  # (the assembly only: a millisecond, to know one revolution's time)
     revolution = probe["run"]["chainRevolution"]
     duration = (args.run_in_revolutions + args.revolutions) * revolution
-    print(f"chaindrive-cvt: {probe['cvt']}, {args.rpm:g} rpm driving, load torque {args.load_torque:g} N m, run-in "
+    if not quiet:
+        print(f"chaindrive-cvt: {probe['cvt']}, {args.rpm:g} rpm driving, load torque {args.load_torque:g} N m, run-in "
           f"{args.run_in_revolutions} + {args.revolutions} chain revolutions ({duration * 1e3:.1f} ms), "
-          f"{args.method} at {args.solver_step * 1e6:g} us")
+              f"{args.method} at {args.solver_step * 1e6:g} us")
     result = _run(args, duration, csv)
     data = np.genfromtxt(csv, delimiter=",", names=True)
     return {name: data[name] for name in data.dtype.names}, result
@@ -55,7 +57,7 @@ def simulate(args, out):
 def _run(args, duration, csv):
     cmd = [paths.executable("chaindrive-cvt"), "--rpm", repr(args.rpm), "--load-torque", repr(args.load_torque),
            "--duration", repr(duration), "--output-step", repr(min(OUTPUT_STEP, duration)), "--method", args.method,
-           "--step", repr(args.solver_step)]
+           "--step", repr(args.solver_step), "--rtol", repr(args.rtol)]
     if args.cvt:
         cmd += ["--cvt", args.cvt]
     if csv:

@@ -374,5 +374,8 @@ def write(out, r, chaos_results=None):
     if ladder_comparisons:
         L += ladder.report_lines(ladder_comparisons)
     L += stability_section(out, r["stability"]) + realtime_section(r["realtime"]) + chaos_section(chaos_results)
+    # the chain CVT's section, from its own run (python -m harness study --scene cvt --out the same folder)
+    if (out / "cvt.md").exists():
+        L += (out / "cvt.md").read_text().splitlines() + [""]
     L += ["## Log", "", "```"] + r["log"] + ["```"]
     (out / "report.md").write_text("\n".join(L) + "\n")

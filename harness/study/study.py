@@ -2,6 +2,7 @@
 method.
 
     python -m harness study [--quick] [--out DIR] [--jobs N] [--scenes 1000,3000,6000]
+    python -m harness study --scene cvt [--quick] [--out DIR]     the chain CVT's section (harness/study/cvt.py)
 
 Scenes: the default drive at 1000, 3000 and 6000 rpm, open loop with the measured-torque tables
 (harness/tables/tables.py: crankshaft speed fluctuation and camshaft torques over crank angle).
@@ -62,7 +63,7 @@ import shutil
 import time
 
 from .. import paths, runs
-from . import report
+from . import cvt, report
 from .methods import CYCLES_TIME, MIN_CYCLES
 from .realtime import realtime
 from .scenes import Study
@@ -72,6 +73,9 @@ CHAOS_RESULTS = paths.ROOT / "docs" / "study" / "chaos" / "results.json"  # dive
 
 
 def add_arguments(ap):
+    ap.add_argument("--scene", choices=("timing", "cvt"), default="timing",
+                    help="timing: the timing drive (default); cvt: the chain CVT's work-precision section "
+                         "(harness/study/cvt.py), which report.md includes")
     ap.add_argument("--quick", action="store_true", help="the reduced variant (CI)")
     ap.add_argument("--out", default=None, help="output directory (default results/study or results/study-quick)")
     ap.add_argument("--scenes", default=None, help="engine speeds [rpm], comma separated (default 1000,3000,6000)")
@@ -120,6 +124,8 @@ def rewrite_report(args):
 def run(args):
     if args.report_only:
         return rewrite_report(args)
+    if args.scene == "cvt":
+        return cvt.run(args)
     scenes_rpm = [6000.0] if args.quick else [1000.0, 3000.0, 6000.0]
     if args.scenes:
         scenes_rpm = [float(x) for x in args.scenes.split(",")]

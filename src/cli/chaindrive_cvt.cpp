@@ -24,7 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 void usage() {
   std::fprintf(stderr,
                "usage: chaindrive-cvt [--cvt FILE] [--rpm R] [--load-torque T] [--duration S] [--output-step S]\n"
-               "                      [--method NAME] [--step S] [--monitored-link K] [--csv FILE] [--quiet]\n"
+               "                      [--method NAME] [--step S] [--rtol R] [--monitored-link K] [--csv FILE] [--quiet]\n"
                "  --cvt FILE           CVT description (chaindrive.cvt/1); default: the embedded default CVT\n"
                "  --rpm R              driving-pulley speed [rpm] (default 2000)\n"
                "  --load-torque T      load torque on the driven pulley [N m] (default 0)\n"
@@ -32,6 +32,7 @@ void usage() {
                "  --method NAME        fixed-verlet (default), fixed-verlet-implicit-joint-damping, arkode-erk,\n"
                "                       arkode-erk-fixed\n"
                "  --step S             fixed step [s] (default 2e-6); arkode-erk: its largest step\n"
+               "  --rtol R             relative tolerance of arkode-erk (default 1e-5)\n"
                "  --csv FILE           the outputs at every output step (default step 5e-5 s)\n"
                "Prints the assembly and the summary (means and checks) as JSON.\n");
 }
@@ -53,6 +54,7 @@ CvtArguments parseArguments(cli::Arguments& args) {
     else if (a == "--output-step") r.run.outputStep = args.number();
     else if (a == "--method") r.run.integrator.method = args.value();
     else if (a == "--step") r.run.integrator.fixed.step = r.run.integrator.adaptive.maxStep = args.number();
+    else if (a == "--rtol") r.run.integrator.adaptive.rtol = args.number();
     else if (a == "--monitored-link") r.run.monitoredLink = static_cast<int>(args.number());
     else if (a == "--csv") r.csv = args.value();
     else if (a == "--quiet") r.quiet = true;
@@ -93,6 +95,7 @@ nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtArg
                    {"clampingForce", {layout.clampingForce[0], layout.clampingForce[1]}},
                    {"closureResidual", m.assembly.closureResidual}};
   j["run"] = {{"method", a.run.integrator.method}, {"step", a.run.integrator.fixed.step},
+              {"rtol", a.run.integrator.adaptive.rtol},
               {"drivingSpeed_rpm", a.run.drivingSpeed * 30.0 / kPi}, {"loadTorque", a.run.loadTorque},
               {"duration", a.run.duration}, {"steps", r.steps}, {"cpuSeconds", r.cpuSeconds},
               {"chainRevolution", revolution}, {"cpuPerChainRevolution", r.cpuSeconds * revolution / a.run.duration}};

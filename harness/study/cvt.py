@@ -1,0 +1,206 @@
+"""The chain CVT on the work-precision chart (`python -m harness study --scene cvt`): the compliant
+methods a CVT runs with, each over a sweep of its step or tolerance, on the default CVT at 2000 rpm
+driving and 100 N m output torque (about 60 % of its torque capacity), stationary.
+
+Accuracy as for the timing drive (harness/study/study.py): per chain revolution the headline
+quantities (harness/cvt/job.py: slip, driven speed, strand forces, clamping forces, power loss) over
+the counted revolutions after a run-in, each a mean with its 95 % confidence half-width; against a
+reference (fixed-verlet at 0.25 us over REFERENCE_FACTOR times the revolutions; its convergence
+checked by arkode-erk at rtol 1e-8 over the same revolutions) the difference in % and
+z = difference / sqrt(ci^2 + ci_ref^2). A point is as accurate as the physics allows when every
+statistic is consistent with the reference jointly at 95 % (Bonferroni) and the checks of a
+stationary state hold: (F_tight - F_slack) r2 within 2 % of the driven torque, the energy balance
+within 1 % of the dissipated energy. A run that fails is a failure marker with the solver's
+message (blow-up: a joint stretched beyond a quarter pitch). Cost: CPU seconds per chain revolution
+(the issue's figure; the paper's stationary case took about 8 hours).
+
+Writes to --out: cvt.md (the report's CVT section), cvt_results.json and wp_cvt.png; the study's
+report.md links them (harness/study/report.py).
+"""
+import json
+import math
+
+from scipy import stats as scistats
+
+from .. import cycle_stats, runs
+from ..cvt import job as cvt_job
+from ..plots import plt
+
+RPM = 2000.0
+LOAD = 100.0                 # [N m]
+REVOLUTIONS = 6              # counted chain revolutions per point
+RUN_IN = 2                   # chain revolutions discarded
+REFERENCE_FACTOR = 3         # the reference counts this many times the revolutions
+REFERENCE = ("fixed-verlet", 2.5e-7)
+CHECK = ("arkode-erk", 1e-8)
+KEYS = ("slip", "drivenSpeed", "tightStrandForce", "slackStrandForce", "clampingForceDriven", "powerLoss")
+# method: the steps [s] (fixed-step) or tolerances (arkode-erk) of its sweep
+SWEEPS = {"fixed-verlet": (5e-7, 1e-6, 1.5e-6, 2e-6, 3e-6, 5e-6, 1e-5),
+          "fixed-verlet-implicit-joint-damping": (1e-6, 2e-6, 3e-6, 5e-6),
+          "arkode-erk": (1e-4, 1e-5, 1e-6)}
+QUICK_SWEEPS = {"fixed-verlet": (1e-6, 1e-5), "arkode-erk": (1e-5,)}
+TORQUE_LIMIT, ENERGY_LIMIT = 0.02, 0.01
+
+
+class Options:
+    """What chaindrive-cvt needs of the main job's options (harness/cvt/job.py)."""
+
+    def __init__(self, method, setting, revolutions, run_in):
+        self.rpm, self.load_torque, self.cvt = RPM, LOAD, None
+        self.method, self.revolutions, self.run_in_revolutions = method, revolutions, run_in
+        adaptive = method.startswith("arkode-erk") and method != "arkode-erk-fixed"
+        self.solver_step = 1e-4 if adaptive else setting  # (arkode-erk: its largest step)
+        self.rtol = setting if adaptive else 1e-5
+
+
+def run_point(method, setting, revolutions, run_in, out):
+    """One run: {method, setting, cpuPerRevolution, statistics, checks} or {..., failure}."""
+    opt = Options(method, setting, revolutions, run_in)
+    point = {"method": method, "setting": setting}
+    try:
+        record, result = cvt_job.simulate(opt, out, quiet=True)
+    except RuntimeError as e:
+        point["failure"] = str(e).replace("chaindrive-cvt failed: chaindrive-cvt: ", "")
+        return point
+    spans = cvt_job.revolution_spans(record["time"], result["run"]["chainRevolution"], run_in)
+    point["statistics"] = cycle_stats.summarize(cvt_job.per_revolution(record, spans))
+    point["checks"] = cvt_job.checks(point["statistics"], result)
+    point["cpuPerRevolution"] = result["run"]["cpuPerChainRevolution"]
+    return point
+
+
+def compare(point, ref):
+    """Per statistic: difference in % of the reference and z; and whether the point is as
+    accurate as the physics allows (every |z| within the Bonferroni bound, the checks held)."""
+    if "failure" in point:
+        return
+    bound = float(scistats.norm.ppf(1.0 - 0.025 / len(KEYS))) / 1.96  # |z| <= this, jointly at 95 %
+    errors = {}
+    for key in KEYS:
+        s, r = point["statistics"][key], ref["statistics"][key]
+        diff = s["mean"] - r["mean"]
+        errors[key] = {"percent": 100.0 * diff / abs(r["mean"]), "z": diff / math.hypot(s["ci95"], r["ci95"])}
+    point["errors"] = errors
+    c = point["checks"]
+    point["checksHold"] = abs(c["torqueBalanceError"]) <= TORQUE_LIMIT and abs(c["energyBalanceError"]) <= ENERGY_LIMIT
+    point["consistent"] = point["checksHold"] and all(abs(e["z"]) <= bound for e in errors.values())
+
+
+def study(out, quick=False, log=print):
+    """The reference, its check and every method's sweep; returns the results."""
+    revolutions = 2 if quick else REVOLUTIONS
+    run_dir = out / "cvt_runs"
+    run_dir.mkdir(parents=True, exist_ok=True)
+    factor = 1 if quick else REFERENCE_FACTOR
+    ref_setting = 1e-6 if quick else REFERENCE[1]
+    log(f"CVT reference: {REFERENCE[0]} at {ref_setting:g} over {factor * revolutions} revolutions")
+    ref = run_point(REFERENCE[0], ref_setting, factor * revolutions, RUN_IN, run_dir)
+    if "failure" in ref:
+        raise RuntimeError(f"the CVT reference failed: {ref['failure']}")
+    check = None if quick else run_point(CHECK[0], CHECK[1], factor * revolutions, RUN_IN, run_dir)
+    if check:
+        compare(check, ref)
+    points = []
+    for method, settings in (QUICK_SWEEPS if quick else SWEEPS).items():
+        for setting in settings:
+            p = run_point(method, setting, revolutions, RUN_IN, run_dir)
+            compare(p, ref)
+            log(f"  {describe(p)}")
+            points.append(p)
+    return {"machine": runs.machine(), "rpm": RPM, "loadTorque": LOAD, "revolutions": revolutions, "runIn": RUN_IN,
+            "reference": ref, "referenceCheck": check, "points": points, "quick": quick}
+
+
+def describe(p):
+    head = f"{p['method']} {p['setting']:g}"
+    if "failure" in p:
+        return f"{head}: FAILED ({p['failure']})"
+    worst = max(p["errors"].values(), key=lambda e: abs(e["z"]))
+    return (f"{head}: {p['cpuPerRevolution']:.3g} CPU s/revolution, largest |z| {abs(worst['z']):.2f}, torque balance "
+            f"{100 * p['checks']['torqueBalanceError']:+.2f} %, energy {100 * p['checks']['energyBalanceError']:+.2f} %"
+            f"{', consistent' if p['consistent'] else ''}")
+
+
+def chart(path, r):
+    """Work-precision: |error| of each statistic (% of the reference) over CPU per revolution."""
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5), sharex=True)
+    markers = {"fixed-verlet": "o", "fixed-verlet-implicit-joint-damping": "s", "arkode-erk": "^"}
+    for ax, key in zip(axes.flat, KEYS):
+        ref = r["reference"]["statistics"][key]
+        band = 100.0 * ref["ci95"] / abs(ref["mean"])
+        ax.axhline(band, color="grey", ls=":", lw=0.8, label="reference's 95 % half-width")
+        for method, marker in markers.items():
+            pts = [p for p in r["points"] if p["method"] == method and "failure" not in p]
+            if pts:
+                ax.loglog([p["cpuPerRevolution"] for p in pts],
+                          [max(abs(p["errors"][key]["percent"]), 1e-4) for p in pts], marker=marker, label=method)
+                for p in pts:
+                    if not p["consistent"]:
+                        ax.plot(p["cpuPerRevolution"], max(abs(p["errors"][key]["percent"]), 1e-4), "x", color="red",
+                                ms=9)
+        ax.set_title(key, fontsize=10)
+        ax.set_ylabel("|error| [% of the reference]")
+    for ax in axes[1]:
+        ax.set_xlabel("CPU s per chain revolution")
+    axes[0, 0].legend(fontsize=7)
+    failed = [describe(p) for p in r["points"] if "failure" in p]
+    fig.suptitle(f"Chain CVT, {r['rpm']:g} rpm, {r['loadTorque']:g} N m: work-precision (red x: not consistent "
+                 "with the reference or a check off)" + ("\nfailed: " + "; ".join(failed) if failed else ""), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def section(r):
+    """The report's CVT section (Markdown)."""
+    ref = r["reference"]
+    lines = [f"## The chain CVT (paper example 4.1)\n",
+             f"Default CVT, {r['rpm']:g} rpm driving, {r['loadTorque']:g} N m output torque, stationary; run-in "
+             f"{r['runIn']} chain revolutions, then {r['revolutions']} counted per point (the reference "
+             f"{ref['method']} at {ref['setting']:g} s over {ref['statistics']['slip']['cycles']} revolutions). Machine: "
+             f"{r['machine']}. Method: harness/study/cvt.py.\n",
+             "| quantity | reference, mean +- 95 % |", "|---|---|"]
+    for key in KEYS:
+        s = ref["statistics"][key]
+        lines.append(f"| {key} | {s['mean']:.6g} +- {s['ci95']:.3g} {s['unit']} |")
+    c = ref["checks"]
+    lines.append(f"\nChecks of the reference: speed ratio {1 + c['speedRatioError']:.5f} x the geometric; "
+                 f"(F_tight - F_slack) r2 off the driven torque by {100 * c['torqueBalanceError']:+.2f} % (limit 2 %); "
+                 f"energy balance {100 * c['energyBalanceError']:+.3f} % of the dissipated energy (limit 1 %).")
+    if r.get("referenceCheck"):
+        k = r["referenceCheck"]
+        lines.append(f"Its convergence check, {k['method']} at {k['setting']:g}: " + (
+            f"FAILED ({k['failure']})" if "failure" in k else
+            f"largest |z| {max(abs(e['z']) for e in k['errors'].values()):.2f} over the statistics "
+            f"({'consistent' if k['consistent'] else 'NOT consistent'})."))
+    lines += ["\n![CVT work-precision](wp_cvt.png)\n",
+              "| method | step or rtol | CPU s per chain revolution | slip error | F_tight error | largest abs(z) | "
+              "torque balance | energy balance | verdict |", "|---|---|---|---|---|---|---|---|---|"]
+    for p in r["points"]:
+        if "failure" in p:
+            lines.append(f"| {p['method']} | {p['setting']:g} | | | | | | | failed: {p['failure']} |")
+            continue
+        e, c = p["errors"], p["checks"]
+        lines.append(f"| {p['method']} | {p['setting']:g} | {p['cpuPerRevolution']:.3g} | "
+                     f"{e['slip']['percent']:+.2f} % | {e['tightStrandForce']['percent']:+.2f} % | "
+                     f"{max(abs(x['z']) for x in e.values()):.2f} | {100 * c['torqueBalanceError']:+.2f} % | "
+                     f"{100 * c['energyBalanceError']:+.2f} % | {'consistent' if p['consistent'] else 'off'} |")
+    good = [p for p in r["points"] if p.get("consistent")]
+    if good:
+        best = min(good, key=lambda p: p["cpuPerRevolution"])
+        lines.append(f"\nCheapest consistent point: {best['method']} at {best['setting']:g}, "
+                     f"{best['cpuPerRevolution']:.3g} CPU s per chain revolution (the goal: under one CPU minute).")
+    return "\n".join(lines) + "\n"
+
+
+def run(args):
+    import pathlib
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    r = study(out, quick=args.quick)
+    (out / "cvt_results.json").write_text(json.dumps(r, indent=1))
+    chart(out / "wp_cvt.png", r)
+    (out / "cvt.md").write_text(section(r))
+    print(f"written: {out / 'cvt.md'}, {out / 'wp_cvt.png'}, {out / 'cvt_results.json'}")
+    return 0
+
