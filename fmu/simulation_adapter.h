@@ -8,6 +8,7 @@
 //   double* realSetting(vr); std::string* stringParameter(vr); int* integerParameter(vr);
 //   bool* booleanParameter(vr)                          settable values (nullptr: not one)
 //   bool readRealOutput(vr, double&); bool readIntegerOutput(vr, int&)   outputs (false: not one)
+//   bool inputAcceptable(const Variable&, double)       false (logged) for an input value out of its range
 //   kStateMagic[8]                                      the first bytes of its serialized states
 // Each FMU compiles this with its own variables.h (kVariables, findVariable, kModelIdentifier).
 #pragma once
@@ -115,6 +116,7 @@ class SimulationAdapter {
         return fmi2Error;
       }
       if (var->causality == Causality::Input) {
+        if (!self().inputAcceptable(*var, v[i])) return fmi2Error;  // (logged by the adapter)
         *self().realSetting(vr[i]) = v[i];
         inputChange();
         continue;

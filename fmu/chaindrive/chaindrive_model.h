@@ -71,6 +71,7 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   bool* booleanParameter(unsigned vr) { return vr == kSolverPreload ? &params_.preload : nullptr; }
   bool readRealOutput(unsigned vr, double& value) const;
   bool readIntegerOutput(unsigned vr, int& value) const;
+  bool inputAcceptable(const Variable&, double) { return true; }  // (any finite speed and torque)
 
   Parameters params_;
   RotorRoles roles_;

@@ -58,8 +58,15 @@ fmi2Status CvtChainModel::prepare() {
   if (!parametersValid()) return fmi2Error;
   try {
     CvtDescription desc = describedBy(params_.cvtFile, "default_cvt.json", "CVT", loadCvtDescription, defaultCvtDescription);
-    if (params_.ratio >= 0.0) desc.ratio = params_.ratio;
     if (params_.clampingForce >= 0.0) desc.clampingForce = params_.clampingForce;
+    // the CVT assembled at the ratio input of the start time, its sheaves ready for the range
+    const double ratio = in_[kInRatio];
+    if (!(ratio >= desc.ratioMin && ratio <= desc.ratioMax)) {
+      host_.log(fmi2Error, "logStatusError", "ratio: the input %g is outside the CVT's ratio range [%g, %g] "
+                "(pulleys.ratioRange of its description)", ratio, desc.ratioMin, desc.ratioMax);
+      return fmi2Error;
+    }
+    desc.ratio = ratio;
     model_ = std::make_shared<const Model>(assembleCvt(desc));
     if (params_.linkIndex < -1 || params_.linkIndex >= model_->chain.links) {
       host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (link 0) or 0..%d",
@@ -100,9 +107,6 @@ bool CvtChainModel::parametersValid() {
     problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
   if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
     problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed [1e-9, 1e-3] s");
-  if (params_.ratio >= 0.0 && !(params_.ratio >= 0.2 && params_.ratio <= 5.0))
-    problems.push_back("ratio: " + std::to_string(params_.ratio) + " is out of range; allowed a negative value (as in "
-                       "the CVT description) or [0.2, 5]");
   if (params_.clampingForce > 1e6)
     problems.push_back("clampingForce: " + std::to_string(params_.clampingForce) + " N is out of range; allowed a "
                        "negative value (as in the CVT description) or [0, 1e6] N");
@@ -129,6 +133,7 @@ void CvtChainModel::applyInputs() {
   if (!held_) return;
   held_->values.crankSpeed = in_[kInDrivingSpeed];
   held_->values.loadTorque[kDrivenPulley] = in_[kInLoadTorque];
+  held_->values.ratio = in_[kInRatio];
 }
 
 void CvtChainModel::evaluateOutputs() {
@@ -144,7 +149,7 @@ double* CvtChainModel::realSetting(unsigned vr) {
     case kDrivenPulleyTauLoad: return &in_[kInLoadTorque];
     case kSolverTolerance: return &params_.tolerance;
     case kSolverStep: return &params_.step;
-    case kRatio: return &params_.ratio;
+    case kRatio: return &in_[kInRatio];
     case kClampingForce: return &params_.clampingForce;
     default: return nullptr;
   }
@@ -164,6 +169,17 @@ bool CvtChainModel::readRealOutput(unsigned vr, double& value) const {
       value = o.read(OutputView{out_, cvt_});
       return true;
     }
+  return false;
+}
+
+// A ratio input outside the prepared CVT's range is an error (before the preparation, prepare()
+// checks it against the description).
+bool CvtChainModel::inputAcceptable(const Variable& v, double value) {
+  if (v.vr != kRatio || !model_) return true;
+  const RatioTable& t = model_->ratioTable;
+  if (value >= t.lo && value <= t.hi()) return true;
+  host_.log(fmi2Error, "logStatusError", "fmi2SetReal: ratio = %g is outside the CVT's ratio range [%g, %g] "
+            "(pulleys.ratioRange of its description)", value, t.lo, t.hi());
   return false;
 }
 

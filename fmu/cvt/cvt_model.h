@@ -1,9 +1,9 @@
 // The model adapter of CVTChain.fmu: the chain CVT (src/cvt/) for transmission and vehicle
 // simulation. Its parameters and their validation, the preparation of the CVT and its start
-// state (the nominal state at the driving speed input), the inputs and the outputs by value
-// reference; the values' checks, the communication step and the FMU state's solver part are
-// SimulationAdapter's (simulation_adapter.h), as for ChainDrive.fmu. The transmission ratio and
-// the clamping force are parameters: the sheaves stand still during a run.
+// state (the nominal state at the inputs: driving speed and ratio), the inputs and the outputs by
+// value reference; the values' checks, the communication step and the FMU state's solver part are
+// SimulationAdapter's (simulation_adapter.h), as for ChainDrive.fmu. The ratio is an input the
+// sheaves follow within the description's ratio range; the clamping force a parameter.
 #pragma once
 
 #include <array>
@@ -17,12 +17,12 @@
 namespace chaindrive::fmu {
 
 /// The Real inputs, in the order of SimulationAdapter's input array.
-enum CvtInput { kInDrivingSpeed = 0, kInLoadTorque = 1, kCvtInputs = 2 };
+enum CvtInput { kInDrivingSpeed = 0, kInLoadTorque = 1, kInRatio = 2, kCvtInputs = 3 };
 
 class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
  public:
   /// The first bytes of a serialized state of this model.
-  static constexpr char kStateMagic[8] = {'C', 'V', 'T', 'C', 'H', 'S', 'T', '1'};
+  static constexpr char kStateMagic[8] = {'C', 'V', 'T', 'C', 'H', 'S', 'T', '2'};  // '2': the ratio input
   static constexpr const char* kModelWord = "CVT";  // (what a state must have been taken of)
 
   explicit CvtChainModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
@@ -32,7 +32,7 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
 
  private:
   friend class SimulationAdapter<CvtChainModel, kCvtInputs>;
-  static constexpr std::array<double, kCvtInputs> kInputStarts = {209.43951023931953, 0.0};
+  static constexpr std::array<double, kCvtInputs> kInputStarts = {209.43951023931953, 0.0, 1.0};
 
   struct Parameters {
     std::string cvtFile;
@@ -40,7 +40,6 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
     std::string method = "fixed-verlet";
     double tolerance = 1e-5;
     double step = 5e-7;
-    double ratio = -1.0;          // < 0: the description's
     double clampingForce = -1.0;  // < 0: the description's
   };
 
@@ -57,6 +56,7 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
   bool* booleanParameter(unsigned) { return nullptr; }
   bool readRealOutput(unsigned vr, double& value) const;
   bool readIntegerOutput(unsigned vr, int& value) const;
+  bool inputAcceptable(const Variable& v, double value);
 
   Parameters params_;
   Outputs out_;

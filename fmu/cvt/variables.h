@@ -12,6 +12,7 @@ enum Vr : unsigned {
   // inputs
   kDrivingPulleyW = 1,
   kDrivenPulleyTauLoad = 2,
+  kRatio = 3,
   // outputs
   kDrivingPulleyPhi = 10,
   kDrivingPulleyTau = 11,
@@ -42,7 +43,6 @@ enum Vr : unsigned {
   kSolverMethod = 102,
   kSolverTolerance = 103,
   kSolverStep = 104,
-  kRatio = 105,
   kClampingForce = 106,
 };
 
@@ -61,6 +61,7 @@ struct Variable {
 constexpr Variable kVariables[] = {
   {"drivingPulley.w",                kDrivingPulleyW,              Type::Real,    Causality::Input,     "209.43951023931953"},
   {"drivenPulley.tauLoad",           kDrivenPulleyTauLoad,         Type::Real,    Causality::Input,     "0"},
+  {"ratio",                          kRatio,                       Type::Real,    Causality::Input,     "1"},
   {"drivingPulley.phi",              kDrivingPulleyPhi,            Type::Real,    Causality::Output,    ""},
   {"drivingPulley.tau",              kDrivingPulleyTau,            Type::Real,    Causality::Output,    ""},
   {"drivenPulley.phi",               kDrivenPulleyPhi,             Type::Real,    Causality::Output,    ""},
@@ -89,7 +90,6 @@ constexpr Variable kVariables[] = {
   {"solver.method",                  kSolverMethod,                Type::String,  Causality::Parameter, "fixed-verlet"},
   {"solver.tolerance",               kSolverTolerance,             Type::Real,    Causality::Parameter, "1e-5"},
   {"solver.step",                    kSolverStep,                  Type::Real,    Causality::Parameter, "5e-7"},
-  {"ratio",                          kRatio,                       Type::Real,    Causality::Parameter, "-1"},
   {"clampingForce",                  kClampingForce,               Type::Real,    Causality::Parameter, "-1"},
 };
 // clang-format on

@@ -74,6 +74,19 @@ struct PulleyModel {
                                // is compressed, one outside it is free
 };
 
+/// A CVT's sheave positions over its transmission ratio (cvt/cvt_assembly.h): at the ratios
+/// lo + k step, each pulley's running and free radius (the sheaves placed so that the chain closes
+/// at that ratio, pre-tensioned by the clamping force). Empty: the ratio stays the assembled one,
+/// lo.
+struct RatioTable {
+  double lo = 0.0, step = 0.0;
+  std::vector<double> running[2], free[2];  // (points) [m] driving, driven
+  bool empty() const { return running[0].empty(); }
+  double hi() const { return empty() ? lo : lo + step * static_cast<double>(running[0].size() - 1); }
+  /// The radii at ratio i (linear between the points; i within [lo, hi]).
+  void at(double i, double running[2], double free[2]) const;
+};
+
 /// The rocker pins between the sheaves (cvt/pin_sheave.h): each pin a bolt with linear axial
 /// stiffness pressed between two cones of wedge half-angle beta.
 struct PinSheaveLaw {
@@ -134,6 +147,7 @@ struct Model {
   ContactLaw rollerSprocket, plateGuide;
   std::vector<PulleyModel> pulleys;  // a CVT's (then no sprockets, guides or tensioner)
   PinSheaveLaw pinSheave;
+  RatioTable ratioTable;
   double frictionRegularization = 0.05;
   int drivenRotor = -1;        // the rotor with prescribed motion, -1 if none
   std::vector<double> rotorOutputSign;  // (rotors) sprockets: running sense; guides: towards the chain

@@ -44,6 +44,21 @@ void readChain(Fields& top, CvtDescription& d) {
   c.finish();
 }
 
+// The range a ratio input may move the sheaves over, [min, max] around the ratio (default: the
+// ratio alone, fixed sheaves).
+void readRatioRange(Fields& p, CvtDescription& d) {
+  d.ratioMin = d.ratioMax = d.ratio;
+  const Fields::json* v = p.raw("ratioRange");
+  if (!v) return;
+  const bool pair = v->is_array() && v->size() == 2 && (*v)[0].is_number() && (*v)[1].is_number();
+  const double lo = pair ? (*v)[0].get<double>() : 0.0, hi = pair ? (*v)[1].get<double>() : 0.0;
+  if (!pair || !(lo >= 0.2 && lo <= d.ratio && d.ratio <= hi && hi <= 5.0))
+    p.problem(p.at("ratioRange"), "must be [min, max] with 0.2 <= min <= ratio (" + formatNumber(d.ratio) +
+                                      ") <= max <= 5");
+  else
+    d.ratioMin = lo, d.ratioMax = hi;
+}
+
 void readPulleys(Fields& top, CvtDescription& d) {
   Fields p = top.object("pulleys", true);
   if (!p.valid()) return;
@@ -51,6 +66,7 @@ void readPulleys(Fields& top, CvtDescription& d) {
   d.wedgeHalfAngle = p.angle("wedgeHalfAngle", 2.0 * kPi / 180.0, 30.0 * kPi / 180.0, std::nullopt);
   d.drivenInertia = p.number("drivenInertia", 0.0, 100.0, std::nullopt, "kg m^2", true);
   d.ratio = p.number("ratio", 0.2, 5.0, std::nullopt, "");
+  readRatioRange(p, d);
   d.clampingForce = p.number("clampingForce", 0.0, 1e6, std::nullopt, "N", true);
   p.finish();
 }

@@ -28,6 +28,7 @@ struct CvtDescription {
   double wedgeHalfAngle = 0.0;   // [rad] of the sheaves' cones
   double drivenInertia = 0.0;    // [kg m^2] the driven pulley and what turns with it
   double ratio = 1.0;            // the driven pulley's running radius over the driving one's
+  double ratioMin = 1.0, ratioMax = 1.0;  // the range a ratio input may move the sheaves over (default: the ratio)
   double clampingForce = 0.0;    // [N] the driven pulley's axial force at the assembled pose
   // the pin-sheave contact
   double friction = 0.0;         // Coulomb coefficient (traction fluid)

@@ -21,7 +21,8 @@ CvtOutputs cvtOutputs(const Model& m, const Data& d, const Outputs& out, int mon
   CvtOutputs c;
   c.drivingSpeed = out.rotorRate[kDrivingPulley];
   c.drivenSpeed = out.rotorRate[kDrivenPulley];
-  const double geometric = m.pulleys[kDrivingPulley].runningRadius / m.pulleys[kDrivenPulley].runningRadius;
+  // (the running radii where the ratio input has put the sheaves)
+  const double geometric = d.pulleyRunningRadius[kDrivingPulley] / d.pulleyRunningRadius[kDrivenPulley];
   c.slip = c.drivingSpeed != 0.0 ? 1.0 - c.drivenSpeed / c.drivingSpeed / geometric : 0.0;
   c.tightStrandForce = out.tightSpanForce;
   c.slackStrandForce = out.slackSpanForce;

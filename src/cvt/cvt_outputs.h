@@ -12,7 +12,7 @@ namespace chaindrive {
 
 struct CvtOutputs {
   double drivingSpeed = 0.0, drivenSpeed = 0.0;  // [rad/s] in the running direction
-  double slip = 0.0;            // 1 - (driven speed / driving speed) / (its geometric value r1 / r2)
+  double slip = 0.0;            // 1 - (driven speed / driving speed) / (its geometric value r1 / r2 at the ratio)
   double tightStrandForce = 0.0, slackStrandForce = 0.0;  // [N] at the strands' middles
   double clampingForce[2] = {0.0, 0.0};  // [N] the pins' axial forces on each pulley
   int pinsInContact[2] = {0, 0};

@@ -25,12 +25,13 @@ PinSheaveForce pinSheaveForce(const PinSheaveLaw& law, double vReg, double penet
 
 namespace {
 
-// One pin against one pulley: its contact point (gap, directions, relative velocities) when
-// the pin lies within the pulley's free radius grown by the margin; false otherwise.
-bool pinContact(const PulleyModel& p, const Data& d, int link, double margin, ContactPoint& c) {
+// One pin against one pulley whose sheaves stand at freeRadius: its contact point (gap,
+// directions, relative velocities) when the pin lies within that radius grown by the margin;
+// false otherwise.
+bool pinContact(const PulleyModel& p, double freeRadius, const Data& d, int link, double margin, ContactPoint& c) {
   const Vec2 pin{d.links.rearX[link], d.links.rearY[link]};
   const Vec2 rel = pin - p.center;
-  const double reach = p.freeRadius + margin;
+  const double reach = freeRadius + margin;
   const double rho2 = dot(rel, rel);
   if (rho2 >= reach * reach) return false;
   const double rho = std::sqrt(rho2);
@@ -38,7 +39,7 @@ bool pinContact(const PulleyModel& p, const Data& d, int link, double margin, Co
   c.link = link;
   c.end = 0;
   c.rotor = p.rotor;
-  c.gap = rho - p.freeRadius;
+  c.gap = rho - freeRadius;
   c.normal = (1.0 / rho) * rel;
   c.tangent = perp(c.normal);
   c.rLink = pin - Vec2{d.links.cx[link], d.links.cy[link]};
@@ -58,15 +59,29 @@ void applyPinForce(const Model& m, Data& d, const ContactPoint& c) {
   d.gen[m.rotorGen(c.rotor)] -= cross(c.rRotor, f);
 }
 
+// The sheaves where the ratio input puts them: the radii of the model's ratio table at the input,
+// or the assembled ones without an input (0) or a table.
+void placeSheaves(const Model& m, Data& d) {
+  if (m.ratioTable.empty() || !(d.inputs.ratio > 0.0)) {
+    for (std::size_t k = 0; k < m.pulleys.size(); ++k) {
+      d.pulleyFreeRadius[k] = m.pulleys[k].freeRadius;
+      d.pulleyRunningRadius[k] = m.pulleys[k].runningRadius;
+    }
+    return;
+  }
+  m.ratioTable.at(d.inputs.ratio, d.pulleyRunningRadius.data(), d.pulleyFreeRadius.data());
+}
+
 }  // namespace
 
 int pinSheaveContacts(const Model& m, Data& d, double margin, bool forces, int count, double& power) {
   const bool list = d.listsContacts(forces);
+  placeSheaves(m, d);
   for (std::size_t k = 0; k < m.pulleys.size(); ++k) {
     const PulleyModel& p = m.pulleys[k];
     for (int i = 0; i < m.chain.links; ++i) {
       ContactPoint c;
-      if (!pinContact(p, d, i, margin, c)) continue;
+      if (!pinContact(p, d.pulleyFreeRadius[k], d, i, margin, c)) continue;
       c.element = static_cast<int>(k);
       d.deepestGap = std::min(d.deepestGap, c.gap);
       if (forces && c.gap < 0.0) {

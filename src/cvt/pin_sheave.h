@@ -29,7 +29,9 @@ struct PinSheaveForce {
 PinSheaveForce pinSheaveForce(const PinSheaveLaw& law, double vReg, double penetration, double vRadial,
                               double vCircumferential);
 
-/// Stage 4 on a CVT: every pin (link i's rear pin) against every pulley (Model::pulleys), its
+/// Stage 4 on a CVT: the sheaves placed at the ratio input (d.pulleyFreeRadius and
+/// pulleyRunningRadius from Model::ratioTable; the assembled ones without), then every pin (link
+/// i's rear pin) against every pulley (Model::pulleys), its
 /// forces added to the links' and pulleys' generalized forces in d.gen when `forces`, each closed
 /// contact listed from d.contacts[count] on when d lists them, d.deepestGap lowered to the
 /// deepest. Returns the number of contacts listed in all; adds the dissipated power to `power`.

@@ -16,6 +16,7 @@ struct InputValues {
   double crankSpeed = 0.0;         // [rad/s] of the driven sprocket
   double crankAcceleration = 0.0;  // [rad/s^2] (used by the acceleration-level contact methods)
   std::vector<double> loadTorque;  // [N m] per rotor (only free sprockets use it)
+  double ratio = 0.0;              // a CVT's transmission ratio (its sheaves follow it; 0: the assembled one)
 };
 
 /// Source of inputs over time. Implementations must be deterministic and must not allocate.
@@ -33,6 +34,7 @@ class HeldInputs : public InputSignal {
     v.crankSpeed = values.crankSpeed;
     v.crankAcceleration = 0.0;
     for (std::size_t i = 0; i < v.loadTorque.size() && i < values.loadTorque.size(); ++i) v.loadTorque[i] = values.loadTorque[i];
+    v.ratio = values.ratio;
   }
   InputValues values;
 };
@@ -197,6 +199,8 @@ struct Data {
                                               // (>= 0 without a penetration)
   std::vector<double> gen;                    // (nGen) generalized forces, laid out as the
                                               // generalized coordinates (model.h)
+  // a CVT's sheaves at the ratio input (cvt/pin_sheave.h): each pulley's free and running radius
+  std::vector<double> pulleyFreeRadius, pulleyRunningRadius;  // (pulleys) [m]
   // tensioner
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   // power terms

@@ -80,6 +80,10 @@ Data::Data(const Model& m)
       windows(m.chain.links, static_cast<int>(m.sprockets.size()), static_cast<int>(m.guides.size())),
       rollerHints(static_cast<int>(m.sprockets.size()), m.chain.links) {
   inputs.loadTorque.assign(m.rotors.size(), 0.0);
+  for (const PulleyModel& p : m.pulleys) {
+    pulleyFreeRadius.push_back(p.freeRadius);
+    pulleyRunningRadius.push_back(p.runningRadius);
+  }
   rotorAngle.assign(m.rotors.size(), 0.0);
   rotorRate.assign(m.rotors.size(), 0.0);
   rotorCos.assign(m.rotors.size(), 1.0);

@@ -48,3 +48,39 @@ TEST(CvtAssembly, NominalStateMovesWithThePulleys) {
     EXPECT_NEAR(v, w * r1, 0.01 * w * r1) << "link " << i;
   }
 }
+
+TEST(CvtAssembly, RatioTableGivesTheSheavesOfEveryRatioInTheRange) {
+  const CvtDescription d = defaultCvtDescription();
+  const Model m = assembleCvt(d);
+  ASSERT_FALSE(m.ratioTable.empty());
+  EXPECT_DOUBLE_EQ(m.ratioTable.lo, d.ratioMin);
+  EXPECT_NEAR(m.ratioTable.hi(), d.ratioMax, 1e-12);
+  // between the table's points: the layout assembled at that ratio, within a micrometre (0.24 um
+  // measured; the pins' compression is 40-80 um)
+  for (double ratio : {0.53, 0.8, 1.0, 1.37, 1.99}) {
+    CvtDescription at = d;
+    at.ratio = ratio;
+    CvtLayout layout;
+    assembleCvt(at, &layout);
+    double running[2], free[2];
+    m.ratioTable.at(ratio, running, free);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(running[k], layout.runningRadius[k], 1e-6) << "ratio " << ratio << " pulley " << k;
+      EXPECT_NEAR(free[k], layout.freeRadius[k], 1e-6) << "ratio " << ratio << " pulley " << k;
+    }
+    EXPECT_NEAR(running[1] / running[0], ratio, 1e-4);
+  }
+}
+
+TEST(CvtAssembly, RatioRangeOutsideWhatTheChainReachesIsNamed) {
+  CvtDescription d = defaultCvtDescription();
+  d.centerDistance = 0.25;  // the chain closes at ratio 1 (radii 16 mm) ...
+  EXPECT_NO_THROW(assembleCvt(d));
+  d.ratioMax = 3.0;         // ... but at ratio 3 the small radius would fall below a pitch
+  try {
+    assembleCvt(d);
+    FAIL() << "expected a DescriptionError";
+  } catch (const DescriptionError& e) {
+    EXPECT_NE(std::string(e.what()).find("pulleys.ratioRange"), std::string::npos) << e.what();
+  }
+}

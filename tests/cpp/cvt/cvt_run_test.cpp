@@ -83,3 +83,28 @@ TEST(CvtRun, MethodsWithoutPinSheaveJacobiansAreRefused) {
   so.contactMethod = "time-stepping";
   EXPECT_THROW(Simulation(model, so, std::make_unique<HeldInputs>(*model)), std::invalid_argument);
 }
+
+// The ratio input moves the sheaves: the chain climbs on the driving pulley and sinks into the
+// driven one until the driven pulley turns at the new geometric ratio.
+TEST(CvtRun, RatioInputShiftsTheChain) {
+  const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  SimulationOptions so;
+  so.integrator.method = "fixed-verlet";
+  so.integrator.fixed.step = 1e-6;
+  auto inputs = std::make_unique<HeldInputs>(*model);
+  HeldInputs& held = *inputs;
+  const double w = 2000.0 * 3.14159265358979323846 / 30.0;
+  held.values.crankSpeed = w;
+  held.values.ratio = 1.0;
+  Simulation sim(model, so, std::move(inputs));
+  sim.startFrom(0.0, cvtNominalState(*model, w));
+  // 1.0 -> 1.5 over 100 ms in steps of 0.1 ms, then 60 ms held
+  for (int k = 1; k <= 1600; ++k) {
+    held.values.ratio = 1.0 + 0.5 * std::min(1.0, k / 1000.0);
+    sim.advanceTo(k * 1e-4);
+  }
+  const Outputs& out = sim.outputs();
+  const CvtOutputs c = cvtOutputs(*model, *sim.outputData(), out, -1);
+  EXPECT_NEAR(c.drivingSpeed / c.drivenSpeed, 1.5, 0.015);  // within 1 % of the new ratio
+  EXPECT_LT(std::fabs(c.slip), 0.005);
+}

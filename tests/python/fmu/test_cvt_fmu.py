@@ -1,5 +1,6 @@
 """CVTChain.fmu: the chain CVT for transmission and vehicle simulation through fmpy: validation,
-a loaded run, the ratio and clamping parameters, bit-identical instances, FMU states, errors."""
+a loaded run, the start ratio and clamping force, the ratio input shifting the chain, bit-identical
+instances, FMU states, errors."""
 import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
@@ -47,12 +48,24 @@ def test_loaded_run_transmits_the_torque_with_a_little_slip():
     assert 25 <= got["contacts"] <= 40       # the pins of the two wraps
 
 
-def test_ratio_and_clamping_force_are_parameters():
+def test_start_ratio_and_clamping_force():
     s = cvt(parameters={"ratio": 2.0, "clampingForce": 30000.0}, load=0.0)
     out = run(s, 100)
     s.close()
     assert out[-1, 0] == pytest.approx(W / 2.0, rel=5e-3)  # no load: the geometric ratio
     assert out[-20:, 4].mean() == pytest.approx(30000.0, rel=0.1)  # the clamping force it was assembled with
+
+
+def test_ratio_input_shifts_the_chain_and_its_range_is_checked():
+    s = cvt("shift", load=30.0)
+    for k in range(800):  # 1.0 -> 1.3 over 50 ms, then 30 ms held
+        s.step(H, inputs={"ratio": 1.0 + 0.3 * min(1.0, k / 500.0)}, t=k * H)
+    w_driven = s.get(["drivenPulley.w"])["drivenPulley.w"]
+    assert W / w_driven == pytest.approx(1.3, rel=0.01)
+    with pytest.raises(FMICallException):
+        s.set("ratio", 2.5)  # beyond the default CVT's ratio range [0.5, 2]
+    assert any("ratio = 2.5" in m and "ratioRange" in m for m in s.errors()), s.messages
+    s.close()
 
 
 def test_two_instances_interleaved_reproduce_their_solo_runs_bit_for_bit():
