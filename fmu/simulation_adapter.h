@@ -2,8 +2,10 @@
 // protocol calls): a Simulation (src/run/simulation.h) on its time grid, its inputs held over a
 // communication step, the values by value reference through the adapter's tables, the
 // communication step and the solver's part of an FMU state. A model adapter derives from
-// SimulationAdapter<itself, its number of Real inputs> and gives what is its own:
-//   fmi2Status prepare();  void reset();                the model, its start state, its parameters
+// SimulationAdapter<itself, its number of Real inputs> and gives what is its own (and
+// kModelWord, what its descriptions describe, for messages):
+//   bool parametersValid(); bool buildModel(); void startSimulation()   the steps of prepare()
+//   void resetSettings();                               parameters and inputs to their start values
 //   void applyInputs();  void evaluateOutputs();        inputs into the simulation, outputs from it
 //   double* realSetting(vr); std::string* stringParameter(vr); int* integerParameter(vr);
 //   bool* booleanParameter(vr)                          settable values (nullptr: not one)
@@ -50,6 +52,34 @@ class SimulationAdapter {
 
   bool prepared() const { return prepared_; }
   void requirePreparation() { prepared_ = false; }  // the start time changed
+
+  /// The model and its start state at host.time(), from the parameters and the inputs: the
+  /// adapter's parametersValid(), buildModel() (model_; false: a problem, logged) and
+  /// startSimulation(). Any failure is logged and leaves the instance unprepared.
+  fmi2Status prepare() {
+    dropSimulation();
+    if (!self().parametersValid()) return fmi2Error;
+    try {
+      if (self().buildModel()) {
+        self().startSimulation();
+        prepared_ = true;
+        return fmi2OK;
+      }
+    } catch (const DescriptionError& e) {
+      for (const auto& p : e.problems())
+        host_.log(fmi2Error, "logStatusError", "%s description: %s", Derived::kModelWord, p.c_str());
+    } catch (const std::exception& e) {
+      host_.log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
+    }
+    dropSimulation();
+    return fmi2Error;
+  }
+
+  /// Parameters and inputs to their start values (the adapter's resetSettings()), no run.
+  void reset() {
+    resetRun();
+    self().resetSettings();
+  }
 
   // ---- values by value reference (the checks and messages of the fmi2Get*/fmi2Set* functions) ----
 

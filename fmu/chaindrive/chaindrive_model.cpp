@@ -61,34 +61,16 @@ const RealOutput* findRealOutput(unsigned vr) {
 
 // ---- preparation ----
 
-// The model, the roles of its rotors and the start state, from the parameters: a table of
-// contents of the steps below. Any failure is logged and leaves the instance unprepared.
-fmi2Status ChainDriveModel::prepare() {
-  dropSimulation();
-  if (!parametersValid()) return fmi2Error;
-  try {
-    DriveDescription desc =
-        describedBy(params_.driveFile, "default_drive.json", "drive", loadDriveDescription, defaultDriveDescription);
-    if (!applyTensionerOverrides(desc)) return fmi2Error;
-    model_ = std::make_shared<const Model>(assemble(desc));
-    if (!assignRoles(*model_)) {
-      dropSimulation();
-      return fmi2Error;
-    }
-    startSimulation();
-    prepared_ = true;
-    return fmi2OK;
-  } catch (const DescriptionError& e) {
-    for (const auto& p : e.problems()) host_.log(fmi2Error, "logStatusError", "drive description: %s", p.c_str());
-  } catch (const std::exception& e) {
-    host_.log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
-  }
-  dropSimulation();
-  return fmi2Error;
+// The drive from the parameters (the file, the tensioner overrides) and the roles of its rotors.
+bool ChainDriveModel::buildModel() {
+  DriveDescription desc =
+      describedBy(params_.driveFile, "default_drive.json", "drive", loadDriveDescription, defaultDriveDescription);
+  if (!applyTensionerOverrides(desc)) return false;
+  model_ = std::make_shared<const Model>(assemble(desc));
+  return assignRoles(*model_);
 }
 
-void ChainDriveModel::reset() {
-  resetRun();
+void ChainDriveModel::resetSettings() {
   params_ = Parameters{};
   in_ = kInputStarts;
 }

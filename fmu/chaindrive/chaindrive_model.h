@@ -31,10 +31,6 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
 
   explicit ChainDriveModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
 
-  // preparation: the drive, the roles of its rotors and the start state at host.time()
-  fmi2Status prepare();
-  void reset();  // parameters and inputs to their start values
-
  private:
   friend class SimulationAdapter<ChainDriveModel, kChainDriveInputs>;
   static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0};
@@ -54,8 +50,11 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
            tensionerDampingExtension = -1.0;
   };
 
-  // the steps of prepare()
+  // the steps of prepare() (simulation_adapter.h): the drive, the roles of its rotors and the
+  // start state at host.time()
   bool parametersValid();
+  bool buildModel();
+  void resetSettings();
   void checkChoices(std::vector<std::string>& problems) const;
   void checkRanges(std::vector<std::string>& problems) const;
   bool applyTensionerOverrides(DriveDescription& desc);

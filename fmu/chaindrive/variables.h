@@ -3,6 +3,8 @@
 // types, causalities and start values; tests/python/test_fmu.py fails if the two disagree.
 #pragma once
 
+#include "variable.h"
+
 namespace chaindrive::fmu {
 
 constexpr const char* kGuid = "{b6f8c2a4-7d1e-4f3a-9e2b-5c8d1a0f4e21}";
@@ -58,17 +60,6 @@ enum Vr : unsigned {
   kTensionerDampingExtension = 113,
 };
 
-enum class Type { Real, Integer, Boolean, String };
-enum class Causality { Input, Output, Parameter };
-
-struct Variable {
-  const char* name;
-  unsigned vr;
-  Type type;
-  Causality causality;
-  const char* start;  // start value as written in the model description ("" for outputs)
-};
-
 // clang-format off
 constexpr Variable kVariables[] = {
   {"crankshaft.w",               kCrankshaftW,              Type::Real,    Causality::Input,     "314.1592653589793"},
@@ -118,10 +109,6 @@ constexpr Variable kVariables[] = {
 };
 // clang-format on
 
-inline const Variable* findVariable(unsigned vr) {
-  for (const Variable& v : kVariables)
-    if (v.vr == vr) return &v;
-  return nullptr;
-}
+inline const Variable* findVariable(unsigned vr) { return findIn(kVariables, vr); }
 
 }  // namespace chaindrive::fmu

@@ -51,43 +51,28 @@ const char* const kCvtMethods[] = {"fixed-verlet", "fixed-verlet-implicit-joint-
 
 // ---- preparation ----
 
-// The CVT and its start state from the parameters; any failure is logged and leaves the instance
-// unprepared.
-fmi2Status CvtChainModel::prepare() {
-  dropSimulation();
-  if (!parametersValid()) return fmi2Error;
-  try {
-    CvtDescription desc = describedBy(params_.cvtFile, "default_cvt.json", "CVT", loadCvtDescription, defaultCvtDescription);
-    if (params_.clampingForce >= 0.0) desc.clampingForce = params_.clampingForce;
-    // the CVT assembled at the ratio input of the start time, its sheaves ready for the range
-    const double ratio = in_[kInRatio];
-    if (!(ratio >= desc.ratioMin && ratio <= desc.ratioMax)) {
-      host_.log(fmi2Error, "logStatusError", "ratio: the input %g is outside the CVT's ratio range [%g, %g] "
-                "(pulleys.ratioRange of its description)", ratio, desc.ratioMin, desc.ratioMax);
-      return fmi2Error;
-    }
-    desc.ratio = ratio;
-    model_ = std::make_shared<const Model>(assembleCvt(desc));
-    if (params_.linkIndex < -1 || params_.linkIndex >= model_->chain.links) {
-      host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (link 0) or 0..%d",
-                params_.linkIndex, model_->chain.links - 1);
-      dropSimulation();
-      return fmi2Error;
-    }
-    startSimulation();
-    prepared_ = true;
-    return fmi2OK;
-  } catch (const DescriptionError& e) {
-    for (const auto& p : e.problems()) host_.log(fmi2Error, "logStatusError", "CVT description: %s", p.c_str());
-  } catch (const std::exception& e) {
-    host_.log(fmi2Error, "logStatusError", "initialization failed: %s", e.what());
+// The CVT from the parameters, assembled at the ratio input of the start time (its sheaves ready
+// for the ratio range).
+bool CvtChainModel::buildModel() {
+  CvtDescription desc = describedBy(params_.cvtFile, "default_cvt.json", "CVT", loadCvtDescription, defaultCvtDescription);
+  if (params_.clampingForce >= 0.0) desc.clampingForce = params_.clampingForce;
+  const double ratio = in_[kInRatio];
+  if (!(ratio >= desc.ratioMin && ratio <= desc.ratioMax)) {
+    host_.log(fmi2Error, "logStatusError", "ratio: the input %g is outside the CVT's ratio range [%g, %g] "
+              "(pulleys.ratioRange of its description)", ratio, desc.ratioMin, desc.ratioMax);
+    return false;
   }
-  dropSimulation();
-  return fmi2Error;
+  desc.ratio = ratio;
+  model_ = std::make_shared<const Model>(assembleCvt(desc));
+  if (params_.linkIndex < -1 || params_.linkIndex >= model_->chain.links) {
+    host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (link 0) or 0..%d",
+              params_.linkIndex, model_->chain.links - 1);
+    return false;
+  }
+  return true;
 }
 
-void CvtChainModel::reset() {
-  resetRun();
+void CvtChainModel::resetSettings() {
   params_ = Parameters{};
   in_ = kInputStarts;
 }

@@ -27,9 +27,6 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
 
   explicit CvtChainModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
 
-  fmi2Status prepare();
-  void reset();
-
  private:
   friend class SimulationAdapter<CvtChainModel, kCvtInputs>;
   static constexpr std::array<double, kCvtInputs> kInputStarts = {209.43951023931953, 0.0, 1.0};
@@ -43,8 +40,10 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
     double clampingForce = -1.0;  // < 0: the description's
   };
 
-  // the steps of prepare()
+  // the steps of prepare() (simulation_adapter.h)
   bool parametersValid();
+  bool buildModel();
+  void resetSettings();
   void startSimulation();
 
   // what SimulationAdapter asks of its model (simulation_adapter.h)

@@ -3,6 +3,8 @@
 // tests/python/fmu/test_cvt_fmu.py fails if the two disagree.
 #pragma once
 
+#include "variable.h"
+
 namespace chaindrive::fmu {
 
 constexpr const char* kGuid = "{3f9a7c21-5b8e-4d62-a1f4-8e2c6b0d9a57}";
@@ -46,17 +48,6 @@ enum Vr : unsigned {
   kClampingForce = 106,
 };
 
-enum class Type { Real, Integer, Boolean, String };
-enum class Causality { Input, Output, Parameter };
-
-struct Variable {
-  const char* name;
-  unsigned vr;
-  Type type;
-  Causality causality;
-  const char* start;  // start value as written in the model description ("" for outputs)
-};
-
 // clang-format off
 constexpr Variable kVariables[] = {
   {"drivingPulley.w",                kDrivingPulleyW,              Type::Real,    Causality::Input,     "209.43951023931953"},
@@ -94,10 +85,6 @@ constexpr Variable kVariables[] = {
 };
 // clang-format on
 
-inline const Variable* findVariable(unsigned vr) {
-  for (const Variable& v : kVariables)
-    if (v.vr == vr) return &v;
-  return nullptr;
-}
+inline const Variable* findVariable(unsigned vr) { return findIn(kVariables, vr); }
 
 }  // namespace chaindrive::fmu

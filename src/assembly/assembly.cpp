@@ -481,10 +481,7 @@ void placePins(Model& m, const std::vector<RouteElement>& route) {
   m.assembly.closureResidual = norm(m.path.point(sEnd) - m.path.point(s0));
   m.pins.resize(n);
   for (int k = 0; k < n; ++k) m.pins[k] = nominalPin(m, route, spin[k]);
-  double maxGap = 0.0;
-  for (int k = 0; k < n; ++k)
-    maxGap = std::max(maxGap, std::fabs(norm(m.pins[(k + 1) % n].position - m.pins[k].position) - p));
-  m.assembly.maxJointGap = maxGap;
+  m.assembly.maxJointGap = largestChordError(m.pins, p);
 }
 
 // The pin on sprocket rotor `rotor` nearest the point at arc length `mid`; -1 if none.
@@ -554,6 +551,14 @@ void layOutState(Model& m) {
   m.stateDissipated = idx++;
   m.nStates = idx;
   m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
+}
+
+double largestChordError(const std::vector<PinNominal>& pins, double chord) {
+  const std::size_t n = pins.size();
+  double largest = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    largest = std::max(largest, std::fabs(norm(pins[(k + 1) % n].position - pins[k].position) - chord));
+  return largest;
 }
 
 int Model::rotorIndex(const std::string& n) const {

@@ -177,6 +177,9 @@ struct Model {
   int rotorIndex(const std::string& name) const;  // -1 if none
 };
 
+/// The largest deviation of a joint of the pins' closed polygon from `chord` [m].
+double largestChordError(const std::vector<PinNominal>& pins, double chord);
+
 /// Lays out the state vector (the layout above) for the model's links and rotors.
 void layOutState(Model& m);
 

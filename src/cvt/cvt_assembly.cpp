@@ -117,10 +117,7 @@ void placePins(Model& m, double chord) {
       pn.radius = std::fabs(seg.signedRadius);
     }
   }
-  double maxGap = 0.0;
-  for (int k = 0; k < n; ++k)
-    maxGap = std::max(maxGap, std::fabs(norm(m.pins[(k + 1) % n].position - m.pins[k].position) - chord));
-  m.assembly.maxJointGap = maxGap;
+  m.assembly.maxJointGap = largestChordError(m.pins, chord);
 }
 
 // The layout at ratio d.ratio: the pre-tension the driven pulley's clamping force holds,
