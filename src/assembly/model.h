@@ -31,7 +31,7 @@ struct ChainModel {
 struct RotorModel {
   std::string name;
   bool isSprocket = true;    // a wheel the chain wraps, driven or loaded (sprocket or pulley); false: a guide
-  int element = -1;          // index into Model::sprockets or Model::guides
+  int element = -1;          // index into Model::sprockets, Model::guides or Model::pulleys
   Vec2 axis;                 // [m]
   double inertia = 0.0;      // [kg m^2]
   bool prescribed = false;   // angle follows the crankshaft-speed input
@@ -62,8 +62,8 @@ struct GuideModel {
   double pivotDamping = 0.0;
 };
 
-/// A CVT's pulley (cvt/): the chain's rocker pins clamped between its two conical sheaves, which
-/// stand at a fixed axial distance (the transmission ratio), so a pin's axial compression follows
+/// A CVT's pulley (cvt/): the chain's rocker pins clamped between its two conical sheaves, whose
+/// axial distance the transmission ratio sets (RatioTable), so a pin's axial compression follows
 /// from its radius alone.
 struct PulleyModel {
   std::string name;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "allocation_counter.h"
 #include "cvt/cvt_assembly.h"
 #include "run/simulation.h"
 
@@ -107,4 +108,35 @@ TEST(CvtRun, RatioInputShiftsTheChain) {
   const CvtOutputs c = cvtOutputs(*model, *sim.outputData(), out, -1);
   EXPECT_NEAR(c.drivingSpeed / c.drivenSpeed, 1.5, 0.015);  // within 1 % of the new ratio
   EXPECT_LT(std::fabs(c.slip), 0.005);
+}
+
+// A communication step of the fixed-step mode on a CVT (restart, steps with the ratio input
+// moving the sheaves, the CVT's outputs) makes no heap allocation: what hardware-in-the-loop needs.
+TEST(CvtRun, FixedStepCommunicationStepAllocatesNothing) {
+  if (!chaindrive::test::allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc";
+  const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  for (const char* method : {"fixed-verlet", "fixed-verlet-implicit-joint-damping"}) {
+    SimulationOptions so;
+    so.integrator.method = method;
+    so.integrator.fixed.step = 1e-6;
+    auto inputs = std::make_unique<HeldInputs>(*model);
+    HeldInputs& held = *inputs;
+    held.values.crankSpeed = 200.0;
+    held.values.ratio = 1.0;
+    Simulation sim(model, so, std::move(inputs));
+    sim.startFrom(0.0, cvtNominalState(*model, 200.0));
+    sim.advanceTo(1e-4);
+    (void)cvtOutputs(*model, *sim.outputData(), sim.outputs(), -1);
+    double t = 1e-4;
+    const long n = chaindrive::test::countAllocations([&] {
+      for (int k = 0; k < 20; ++k) {
+        held.values.ratio = 1.0 + 1e-3 * k;
+        sim.restart(0.0);
+        t += 1e-4;
+        sim.advanceTo(t);
+        (void)cvtOutputs(*model, *sim.outputData(), sim.outputs(), -1).slip;
+      }
+    });
+    EXPECT_EQ(n, 0) << method;
+  }
 }
