@@ -4,11 +4,12 @@ driving and 100 N m output torque (about 60 % of its torque capacity), stationar
 
 Accuracy as for the timing drive (harness/study/study.py): per chain revolution the headline
 quantities (harness/cvt/job.py: slip, driven speed, strand forces, clamping forces, power loss) over
-the counted revolutions after a run-in, each a mean with its 95 % confidence half-width; against a
+the counted revolutions after the main job's run-in (the pins' radial settling), each a mean with its 95 % confidence half-width; against a
 reference (fixed-verlet at 0.25 us over REFERENCE_FACTOR times the revolutions; its convergence
 checked by arkode-erk at rtol 1e-8 over the same revolutions) the difference in % and
-z = difference / sqrt(ci^2 + ci_ref^2). A point is as accurate as the physics allows when every
-statistic is consistent with the reference jointly at 95 % (Bonferroni) and the checks of a
+z = difference / sqrt(ci^2 + ci_ref^2). A point is accurate when every statistic is
+within its engineering tolerance (TOLERANCES: forces 2 %, slip and power loss 5 %, driven speed
+0.05 %) or consistent with the reference jointly at 95 % (Bonferroni), and the checks of a
 stationary state hold: (F_tight - F_slack) r2 within 2 % of the driven torque, the energy balance
 within 1 % of the dissipated energy. A run that fails is a failure marker with the solver's
 message (blow-up: a joint stretched beyond a quarter pitch). Cost: CPU seconds per chain revolution
@@ -19,6 +20,8 @@ report.md links them (harness/study/report.py).
 """
 import json
 import math
+import pathlib
+import shutil
 
 from scipy import stats as scistats
 
@@ -29,11 +32,18 @@ from ..plots import plt
 RPM = 2000.0
 LOAD = 100.0                 # [N m]
 REVOLUTIONS = 6              # counted chain revolutions per point
-RUN_IN = 2                   # chain revolutions discarded
+RUN_IN = cvt_job.RUN_IN_REVOLUTIONS  # chain revolutions discarded (the pins' radial settling)
+QUICK_RUN_IN = 2
 REFERENCE_FACTOR = 3         # the reference counts this many times the revolutions
 REFERENCE = ("fixed-verlet", 2.5e-7)
 CHECK = ("arkode-erk", 1e-8)
 KEYS = ("slip", "drivenSpeed", "tightStrandForce", "slackStrandForce", "clampingForceDriven", "powerLoss")
+# [% of the reference] what a transmission engineer reads these to: a statistic is accurate
+# within its tolerance or within the scatter (|z|). The settled CVT runs periodically, not
+# chaotically: its scatter over revolutions is about 0.1 %, far below what matters, so the scatter
+# alone would ask every method to converge to the reference's last digits.
+TOLERANCES = {"slip": 5.0, "drivenSpeed": 0.05, "tightStrandForce": 2.0, "slackStrandForce": 2.0,
+              "clampingForceDriven": 2.0, "powerLoss": 5.0}
 # method: the steps [s] (fixed-step) or tolerances (arkode-erk) of its sweep
 SWEEPS = {"fixed-verlet": (5e-7, 1e-6, 1.5e-6, 2e-6, 3e-6, 5e-6, 1e-5),
           "fixed-verlet-implicit-joint-damping": (1e-6, 2e-6, 3e-6, 5e-6),
@@ -83,31 +93,33 @@ def compare(point, ref):
     point["errors"] = errors
     c = point["checks"]
     point["checksHold"] = abs(c["torqueBalanceError"]) <= TORQUE_LIMIT and abs(c["energyBalanceError"]) <= ENERGY_LIMIT
-    point["consistent"] = point["checksHold"] and all(abs(e["z"]) <= bound for e in errors.values())
+    point["consistent"] = point["checksHold"] and all(
+        abs(e["z"]) <= bound or abs(e["percent"]) <= TOLERANCES[key] for key, e in errors.items())
 
 
 def study(out, quick=False, log=print):
     """The reference, its check and every method's sweep; returns the results."""
     revolutions = 2 if quick else REVOLUTIONS
+    run_in = QUICK_RUN_IN if quick else RUN_IN
     run_dir = out / "cvt_runs"
     run_dir.mkdir(parents=True, exist_ok=True)
     factor = 1 if quick else REFERENCE_FACTOR
     ref_setting = 1e-6 if quick else REFERENCE[1]
     log(f"CVT reference: {REFERENCE[0]} at {ref_setting:g} over {factor * revolutions} revolutions")
-    ref = run_point(REFERENCE[0], ref_setting, factor * revolutions, RUN_IN, run_dir)
+    ref = run_point(REFERENCE[0], ref_setting, factor * revolutions, run_in, run_dir)
     if "failure" in ref:
         raise RuntimeError(f"the CVT reference failed: {ref['failure']}")
-    check = None if quick else run_point(CHECK[0], CHECK[1], factor * revolutions, RUN_IN, run_dir)
+    check = None if quick else run_point(CHECK[0], CHECK[1], factor * revolutions, run_in, run_dir)
     if check:
         compare(check, ref)
     points = []
     for method, settings in (QUICK_SWEEPS if quick else SWEEPS).items():
         for setting in settings:
-            p = run_point(method, setting, revolutions, RUN_IN, run_dir)
+            p = run_point(method, setting, revolutions, run_in, run_dir)
             compare(p, ref)
             log(f"  {describe(p)}")
             points.append(p)
-    return {"machine": runs.machine(), "rpm": RPM, "loadTorque": LOAD, "revolutions": revolutions, "runIn": RUN_IN,
+    return {"machine": runs.machine(), "rpm": RPM, "loadTorque": LOAD, "revolutions": revolutions, "runIn": run_in,
             "reference": ref, "referenceCheck": check, "points": points, "quick": quick}
 
 
@@ -118,7 +130,7 @@ def describe(p):
     worst = max(p["errors"].values(), key=lambda e: abs(e["z"]))
     return (f"{head}: {p['cpuPerRevolution']:.3g} CPU s/revolution, largest |z| {abs(worst['z']):.2f}, torque balance "
             f"{100 * p['checks']['torqueBalanceError']:+.2f} %, energy {100 * p['checks']['energyBalanceError']:+.2f} %"
-            f"{', consistent' if p['consistent'] else ''}")
+            f"{', accurate' if p['consistent'] else ''}")
 
 
 def chart(path, r):
@@ -144,8 +156,8 @@ def chart(path, r):
         ax.set_xlabel("CPU s per chain revolution")
     axes[0, 0].legend(fontsize=7)
     failed = [describe(p) for p in r["points"] if "failure" in p]
-    fig.suptitle(f"Chain CVT, {r['rpm']:g} rpm, {r['loadTorque']:g} N m: work-precision (red x: not consistent "
-                 "with the reference or a check off)" + ("\nfailed: " + "; ".join(failed) if failed else ""), fontsize=9)
+    fig.suptitle(f"Chain CVT, {r['rpm']:g} rpm, {r['loadTorque']:g} N m: work-precision (red x: not accurate: "
+                 "a statistic beyond its tolerance and the scatter, or a check off)" + ("\nfailed: " + "; ".join(failed) if failed else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -158,7 +170,9 @@ def section(r):
              f"Default CVT, {r['rpm']:g} rpm driving, {r['loadTorque']:g} N m output torque, stationary; run-in "
              f"{r['runIn']} chain revolutions, then {r['revolutions']} counted per point (the reference "
              f"{ref['method']} at {ref['setting']:g} s over {ref['statistics']['slip']['cycles']} revolutions). Machine: "
-             f"{r['machine']}. Method: harness/study/cvt.py.\n",
+             f"{r['machine']}. Method: harness/study/cvt.py; a point is accurate when every statistic is within "
+             "its tolerance (" + ", ".join(f"{k} {v:g} %" for k, v in TOLERANCES.items()) + ") or within the "
+             "reference's scatter, and the torque and energy balances hold (2 %, 1 %).\n",
              "| quantity | reference, mean +- 95 % |", "|---|---|"]
     for key in KEYS:
         s = ref["statistics"][key]
@@ -172,7 +186,7 @@ def section(r):
         lines.append(f"Its convergence check, {k['method']} at {k['setting']:g}: " + (
             f"FAILED ({k['failure']})" if "failure" in k else
             f"largest |z| {max(abs(e['z']) for e in k['errors'].values()):.2f} over the statistics "
-            f"({'consistent' if k['consistent'] else 'NOT consistent'})."))
+            f"({'accurate' if k['consistent'] else 'NOT accurate'})."))
     lines += ["\n![CVT work-precision](wp_cvt.png)\n",
               "| method | step or rtol | CPU s per chain revolution | slip error | F_tight error | largest abs(z) | "
               "torque balance | energy balance | verdict |", "|---|---|---|---|---|---|---|---|---|"]
@@ -184,23 +198,35 @@ def section(r):
         lines.append(f"| {p['method']} | {p['setting']:g} | {p['cpuPerRevolution']:.3g} | "
                      f"{e['slip']['percent']:+.2f} % | {e['tightStrandForce']['percent']:+.2f} % | "
                      f"{max(abs(x['z']) for x in e.values()):.2f} | {100 * c['torqueBalanceError']:+.2f} % | "
-                     f"{100 * c['energyBalanceError']:+.2f} % | {'consistent' if p['consistent'] else 'off'} |")
+                     f"{100 * c['energyBalanceError']:+.2f} % | {'accurate' if p['consistent'] else 'off'} |")
     good = [p for p in r["points"] if p.get("consistent")]
     if good:
         best = min(good, key=lambda p: p["cpuPerRevolution"])
-        lines.append(f"\nCheapest consistent point: {best['method']} at {best['setting']:g}, "
+        lines.append(f"\nCheapest accurate point: {best['method']} at {best['setting']:g}, "
                      f"{best['cpuPerRevolution']:.3g} CPU s per chain revolution (the goal: under one CPU minute).")
     return "\n".join(lines) + "\n"
 
 
+def rejudge(r):
+    """The comparisons of saved results again (the tolerances may have changed)."""
+    for p in [r.get("referenceCheck")] + r["points"]:
+        if p:
+            compare(p, r["reference"])
+    return r
+
+
 def run(args):
-    import pathlib
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    r = study(out, quick=args.quick)
+    if args.report_only:
+        r = rejudge(json.loads(pathlib.Path(args.report_only).read_text()))
+    else:
+        r = study(out, quick=args.quick)
     (out / "cvt_results.json").write_text(json.dumps(r, indent=1))
     chart(out / "wp_cvt.png", r)
     (out / "cvt.md").write_text(section(r))
+    if not args.keep_csv:
+        shutil.rmtree(out / "cvt_runs", ignore_errors=True)
     print(f"written: {out / 'cvt.md'}, {out / 'wp_cvt.png'}, {out / 'cvt_results.json'}")
     return 0
 

@@ -122,10 +122,10 @@ def rewrite_report(args):
 
 
 def run(args):
-    if args.report_only:
-        return rewrite_report(args)
     if args.scene == "cvt":
         return cvt.run(args)
+    if args.report_only:
+        return rewrite_report(args)
     scenes_rpm = [6000.0] if args.quick else [1000.0, 3000.0, 6000.0]
     if args.scenes:
         scenes_rpm = [float(x) for x in args.scenes.split(",")]
