@@ -5,13 +5,14 @@
 #include <string>
 
 #include "assembly/preload.h"
+#include "description/fields.h"
 #include "cvt/cvt_outputs.h"
 
 namespace chaindrive {
 
 namespace {
 
-std::string fmt(double v) { return std::to_string(v); }
+std::string fmt(double v) { return formatNumber(v); }
 
 // The path through the two pulleys' running circles, the driving one's radius r1.
 ChainPath pathAt(const CvtDescription& d, double r1) {
