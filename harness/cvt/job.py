@@ -48,31 +48,23 @@ def simulate(args, out, quiet=False):
     """Runs chaindrive-cvt over the run-in and the counted revolutions; returns (record, its JSON).
     A failed run raises RuntimeError with the solver's message."""
     csv = out / "cvt_outputs.csv"
-    probe = _run(args, 1e-3, None)  # (the assembly only: a millisecond, to know one revolution's time)
-    revolution = probe["run"]["chainRevolution"]
-    # (an output step more: the last revolution's end on the output grid, whatever the rounding)
-    duration = (args.run_in_revolutions + args.revolutions) * revolution + OUTPUT_STEP
+    revolutions = args.run_in_revolutions + args.revolutions
     if not quiet:
-        print(f"chaindrive-cvt: {probe['cvt']}, {args.rpm:g} rpm driving, load torque {args.load_torque:g} N m, run-in "
-          f"{args.run_in_revolutions} + {args.revolutions} chain revolutions ({duration * 1e3:.1f} ms), "
+        print(f"chaindrive-cvt: {args.cvt or 'default CVT'}, {args.rpm:g} rpm driving, load torque "
+              f"{args.load_torque:g} N m, run-in {args.run_in_revolutions} + {args.revolutions} chain revolutions, "
               f"{args.method} at {args.solver_step * 1e6:g} us")
-    result = _run(args, duration, csv)
-    data = np.genfromtxt(csv, delimiter=",", names=True)
-    return {name: data[name] for name in data.dtype.names}, result
-
-
-def _run(args, duration, csv):
+    # (chaindrive-cvt simulates the revolutions and an output step more: the last one's end on the grid)
     cmd = [paths.executable("chaindrive-cvt"), "--rpm", repr(args.rpm), "--load-torque", repr(args.load_torque),
-           "--duration", repr(duration), "--output-step", repr(min(OUTPUT_STEP, duration)), "--method", args.method,
-           "--step", repr(args.solver_step), "--rtol", repr(args.rtol)]
+           "--revolutions", repr(float(revolutions)), "--output-step", repr(OUTPUT_STEP), "--method", args.method,
+           "--step", repr(args.solver_step), "--rtol", repr(args.rtol), "--csv", str(csv)]
     if args.cvt:
         cmd += ["--cvt", args.cvt]
-    if csv:
-        cmd += ["--csv", str(csv)]
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"chaindrive-cvt failed: {done.stderr.strip()}")
-    return json.loads(done.stdout)
+    result = json.loads(done.stdout)
+    data = np.genfromtxt(csv, delimiter=",", names=True)
+    return {name: data[name] for name in data.dtype.names}, result
 
 
 def revolution_spans(time, revolution, run_in):

@@ -23,12 +23,15 @@ constexpr double kPi = 3.14159265358979323846;
 
 void usage() {
   std::fprintf(stderr,
-               "usage: chaindrive-cvt [--cvt FILE] [--rpm R] [--load-torque T] [--duration S] [--output-step S]\n"
-               "                      [--method NAME] [--step S] [--rtol R] [--monitored-link K] [--csv FILE] [--quiet]\n"
+               "usage: chaindrive-cvt [--cvt FILE] [--rpm R] [--load-torque T] [--duration S | --revolutions R]\n"
+               "                      [--output-step S] [--method NAME] [--step S] [--rtol R] [--monitored-link K]\n"
+               "                      [--csv FILE] [--quiet]\n"
                "  --cvt FILE           CVT description (chaindrive.cvt/1); default: the embedded default CVT\n"
                "  --rpm R              driving-pulley speed [rpm] (default 2000)\n"
                "  --load-torque T      load torque on the driven pulley [N m] (default 0)\n"
                "  --duration S         simulated time [s] (default 0.2); the means over its second half\n"
+               "  --revolutions R      simulated time in chain revolutions (and an output step more, so that\n"
+               "                       the last one ends on the output grid), instead of --duration\n"
                "  --method NAME        fixed-verlet (default), fixed-verlet-implicit-joint-damping, arkode-erk,\n"
                "                       arkode-erk-fixed\n"
                "  --step S             fixed step [s] (default 2e-6); arkode-erk: its largest step\n"
@@ -40,6 +43,7 @@ void usage() {
 struct CvtArguments {
   std::string cvt, csv;
   CvtRunOptions run;
+  double revolutions = 0.0;  // > 0: the duration in chain revolutions (and an output step more)
   bool quiet = false;
 };
 
@@ -51,6 +55,7 @@ CvtArguments parseArguments(cli::Arguments& args) {
     else if (a == "--rpm") r.run.drivingSpeed = args.number() * kPi / 30.0;
     else if (a == "--load-torque") r.run.loadTorque = args.number();
     else if (a == "--duration") r.run.duration = args.number();
+    else if (a == "--revolutions") r.revolutions = args.number();
     else if (a == "--output-step") r.run.outputStep = args.number();
     else if (a == "--method") r.run.integrator.method = args.value();
     else if (a == "--step") r.run.integrator.fixed.step = r.run.integrator.adaptive.maxStep = args.number();
@@ -83,10 +88,14 @@ void writeCsv(const std::string& path, const CvtRunResult& r) {
   }
 }
 
-nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtArguments& a, const CvtRunResult& r) {
+// [s] of one chain revolution at the driving speed, without slip
+double chainRevolution(const Model& m, const CvtLayout& layout, double drivingSpeed) {
+  return m.chain.links * m.chain.pitch / (drivingSpeed * layout.runningRadius[0]);
+}
+
+nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtRunOptions& run, const CvtRunResult& r) {
   const CvtSummary& s = r.summary;
-  const double chainLength = m.chain.links * m.chain.pitch;
-  const double revolution = chainLength / (a.run.drivingSpeed * layout.runningRadius[0]);  // [s] of one chain revolution
+  const double revolution = chainRevolution(m, layout, run.drivingSpeed);
   nlohmann::json j;
   j["cvt"] = m.name;
   j["assembly"] = {{"runningRadius", {layout.runningRadius[0], layout.runningRadius[1]}},
@@ -94,11 +103,11 @@ nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtArg
                    {"pretension", layout.pretension},
                    {"clampingForce", {layout.clampingForce[0], layout.clampingForce[1]}},
                    {"closureResidual", m.assembly.closureResidual}};
-  j["run"] = {{"method", a.run.integrator.method}, {"step", a.run.integrator.fixed.step},
-              {"rtol", a.run.integrator.adaptive.rtol},
-              {"drivingSpeed_rpm", a.run.drivingSpeed * 30.0 / kPi}, {"loadTorque", a.run.loadTorque},
-              {"duration", a.run.duration}, {"steps", r.steps}, {"cpuSeconds", r.cpuSeconds},
-              {"chainRevolution", revolution}, {"cpuPerChainRevolution", r.cpuSeconds * revolution / a.run.duration}};
+  j["run"] = {{"method", run.integrator.method}, {"step", run.integrator.fixed.step},
+              {"rtol", run.integrator.adaptive.rtol},
+              {"drivingSpeed_rpm", run.drivingSpeed * 30.0 / kPi}, {"loadTorque", run.loadTorque},
+              {"duration", run.duration}, {"steps", r.steps}, {"cpuSeconds", r.cpuSeconds},
+              {"chainRevolution", revolution}, {"cpuPerChainRevolution", r.cpuSeconds * revolution / run.duration}};
   j["means"] = {{"from", s.from}, {"to", s.to}, {"drivingSpeed", s.drivingSpeed}, {"drivenSpeed", s.drivenSpeed},
                 {"slip", s.slip}, {"speedRatio", s.speedRatio}, {"geometricRatio", s.geometricRatio},
                 {"tightStrandForce", s.tightStrandForce}, {"slackStrandForce", s.slackStrandForce},
@@ -114,9 +123,11 @@ int run(const CvtArguments& a) {
   const CvtDescription desc = a.cvt.empty() ? defaultCvtDescription() : loadCvtDescription(a.cvt);
   CvtLayout layout;
   auto model = std::make_shared<const Model>(assembleCvt(desc, &layout));
-  const CvtRunResult r = runCvt(model, a.run);
+  CvtRunOptions run = a.run;
+  if (a.revolutions > 0.0) run.duration = a.revolutions * chainRevolution(*model, layout, run.drivingSpeed) + run.outputStep;
+  const CvtRunResult r = runCvt(model, run);
   if (!a.csv.empty()) writeCsv(a.csv, r);
-  if (!a.quiet) std::printf("%s\n", summaryJson(*model, layout, a, r).dump(2).c_str());
+  if (!a.quiet) std::printf("%s\n", summaryJson(*model, layout, run, r).dump(2).c_str());
   return 0;
 }
 

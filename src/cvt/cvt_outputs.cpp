@@ -31,17 +31,19 @@ CvtOutputs cvtOutputs(const Model& m, const Data& d, const Outputs& out, int mon
   c.powerLoss = d.powerDissipated;
   c.linkTension = out.linkTension;
   const int pin = monitoredLink >= 0 && monitoredLink < m.chain.links ? monitoredLink : m.monitoredLink;
+  const double wedge = 2.0 * m.pinSheave.tanWedge;  // (the wedge's normal force over the pin's axial force)
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& p = d.contacts[i];
     if (p.kind != ContactPoint::Kind::PinSheave || p.gap >= 0.0) continue;
-    c.clampingForce[p.element] += p.axialForce;
-    c.pinsInContact[p.element] += p.axialForce > 0.0 ? 1 : 0;
+    const double axial = p.fN / wedge;
+    c.clampingForce[p.element] += axial;
+    c.pinsInContact[p.element] += axial > 0.0 ? 1 : 0;
     if (p.link != pin) continue;
     c.pinPulley = p.element;
     c.pinNormalForce = p.fN;
     c.pinRadialFriction = p.fNFriction;
     c.pinCircumferentialFriction = m.sense * p.fT;  // (forwards: the running direction)
-    c.pinAxialForce = p.axialForce;
+    c.pinAxialForce = axial;
   }
   return c;
 }

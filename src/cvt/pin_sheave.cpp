@@ -89,7 +89,6 @@ int pinSheaveContacts(const Model& m, Data& d, double margin, bool forces, int c
         c.fN = f.normal;
         c.fNFriction = f.frictionRadial;
         c.fT = f.frictionCircumferential;
-        c.axialForce = f.axial;
         power += f.power;
         applyPinForce(m, d, c);
       }

@@ -1,11 +1,10 @@
 #include "dynamics/contact_kinematics.h"
 
-#include "cvt/pin_sheave.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "cvt/pin_sheave.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/link_loops.h"

@@ -155,7 +155,6 @@ struct ContactPoint {
   double fN = 0.0, fT = 0.0;  // force on the chain along normal and tangent
   double fNFriction = 0.0;    // pin-sheave: the friction along the normal (radial; fN is the wedge's
                               // normal force, fT the circumferential friction)
-  double axialForce = 0.0;    // pin-sheave: the pin's axial (clamping) force [N]
 };
 
 /// The force of a contact on the chain (a pin-sheave contact's radial friction included).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cvt/pin_sheave.h"
 #include "dynamics/body_forces.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/contact_kinematics.h"
@@ -162,8 +163,7 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
     const ContactPoint& c = d.contacts[i];
     if (c.gap >= 0.0) continue;
     if (c.kind == ContactPoint::Kind::PinSheave) {
-      const double u = 2.0 * m.pinSheave.tanWedge * -c.gap;  // the pin's compression
-      e.elastic += 0.5 * m.pinSheave.axialStiffness * u * u;
+      e.elastic += pinSheaveForce(m.pinSheave, m.frictionRegularization, -c.gap, 0.0, 0.0).energy;
       continue;
     }
     const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
