@@ -59,6 +59,11 @@ def simulate(args, out, quiet=False):
            "--step", repr(args.solver_step), "--rtol", repr(args.rtol), "--csv", str(csv)]
     if args.cvt:
         cmd += ["--cvt", args.cvt]
+    # (the study's: time stepping's friction polygon, a run continued from a saved state)
+    for option, attribute in (("--friction-facets", "friction_facets"), ("--state-in", "state_in"),
+                              ("--state-out", "state_out")):
+        if getattr(args, attribute, None) is not None:
+            cmd += [option, str(getattr(args, attribute))]
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"chaindrive-cvt failed: {done.stderr.strip()}")

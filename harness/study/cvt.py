@@ -15,6 +15,17 @@ within 1 % of the dissipated energy. A run that fails is a failure marker with t
 message (blow-up: a joint stretched beyond a quarter pitch). Cost: CPU seconds per chain revolution
 (the issue's figure; the paper's stationary case took about 8 hours).
 
+Time stepping (Moreau-Jean, Lemke per step: the compliant pins' friction as complementarity on a
+linearized friction cone of 4 or 8 facets per pin, or rigid pins closing with Newton impacts;
+TS_POINTS) costs tens of CPU seconds per revolution, so its points
+do not run the run-in themselves: they continue from the state a handover run (the reference's
+method and step) reaches at the end of the run-in, with TS_RUN_IN revolutions of their own before
+the counted ones (TS_REVOLUTIONS). Its friction is exact Coulomb, the compliant methods' a
+regularized law (the sliding speed vReg of src/drives/default_cvt.json's frictionRegularization):
+the FRICTION_LIMIT points run the reference's method from the same handover state with a smaller
+vReg, the regularized model approaching Coulomb's law, to tell the regularization's share of the
+difference from the method's.
+
 Writes to --out: cvt.md (the report's CVT section), cvt_results.json and wp_cvt.png; the study's
 report.md links them (harness/study/report.py).
 """
@@ -25,7 +36,7 @@ import shutil
 
 from scipy import stats as scistats
 
-from .. import cycle_stats, runs
+from .. import cycle_stats, paths, runs
 from ..cvt import job as cvt_job
 from ..plots import plt
 
@@ -49,34 +60,75 @@ SWEEPS = {"fixed-verlet": (5e-7, 1e-6, 1.5e-6, 2e-6, 3e-6, 5e-6, 1e-5),
           "fixed-verlet-implicit-joint-damping": (1e-6, 2e-6, 3e-6, 5e-6),
           "arkode-erk": (1e-4, 1e-5, 1e-6)}
 QUICK_SWEEPS = {"fixed-verlet": (1e-6, 1e-5), "arkode-erk": (1e-5,)}
+# time stepping from the handover state: (method, step [s], facets of the friction polygon or None)
+TS_POINTS = (("time-stepping", 1e-5, 4), ("time-stepping", 5e-6, 4), ("time-stepping", 5e-6, 8),
+             ("time-stepping", 2e-6, 4), ("time-stepping", 1e-6, 4), ("time-stepping-rigid-pins", 1e-5, None),
+             ("time-stepping-rigid-pins", 5e-6, None), ("time-stepping-rigid-pins", 2e-6, None),
+             ("time-stepping-rigid-pins", 1e-6, None))
+QUICK_TS_POINTS = (("time-stepping", 5e-6, 4), ("time-stepping-rigid-pins", 5e-6, None))
+TS_RUN_IN, TS_REVOLUTIONS = 1, 3
+QUICK_TS_RUN_IN, QUICK_TS_REVOLUTIONS = 0, 1
+# the regularized friction toward Coulomb's law: (vReg [m/s], fixed-verlet step [s]); the
+# regularized friction is stiff, c = mu F / vReg, so its stable step shrinks with vReg
+FRICTION_LIMIT = ((0.005, 2.5e-7), (0.002, 1e-7), (0.001, 5e-8))
 TORQUE_LIMIT, ENERGY_LIMIT = 0.02, 0.01
 
 
 class Options:
-    """What chaindrive-cvt needs of the main job's options (harness/cvt/job.py)."""
+    """What chaindrive-cvt needs of the main job's options (harness/cvt/job.py), and the study's own
+    (time stepping's facets, a handover state to start from or to write, another CVT file)."""
 
-    def __init__(self, method, setting, revolutions, run_in):
-        self.rpm, self.load_torque, self.cvt = RPM, LOAD, None
+    def __init__(self, method, setting, revolutions, run_in, **extra):
+        self.rpm, self.load_torque, self.cvt = RPM, LOAD, extra.get("cvt")
+        self.friction_facets, self.state_in, self.state_out = (extra.get(k) for k in ("facets", "state_in", "state_out"))
         self.method, self.revolutions, self.run_in_revolutions = method, revolutions, run_in
         adaptive = method.startswith("arkode-erk") and method != "arkode-erk-fixed"
         self.solver_step = 1e-4 if adaptive else setting  # (arkode-erk: its largest step)
         self.rtol = setting if adaptive else 1e-5
 
 
-def run_point(method, setting, revolutions, run_in, out):
-    """One run: {method, setting, cpuPerRevolution, statistics, checks} or {..., failure}."""
-    opt = Options(method, setting, revolutions, run_in)
+def run_point(method, setting, revolutions, run_in, out, counted_from=None, **extra):
+    """One run: {method, setting, cpuPerRevolution, statistics, checks} or {..., failure}. The
+    counted revolutions start at revolution `counted_from` (default: run_in) from time 0."""
+    opt = Options(method, setting, revolutions, run_in, **extra)
     point = {"method": method, "setting": setting}
+    point.update({k: extra[k] for k in ("facets", "vReg") if k in extra})
     try:
         record, result = cvt_job.simulate(opt, out, quiet=True)
     except RuntimeError as e:
         point["failure"] = str(e).replace("chaindrive-cvt failed: chaindrive-cvt: ", "")
         return point
-    spans = cvt_job.revolution_spans(record["time"], result["run"]["chainRevolution"], run_in)
+    first = run_in if counted_from is None else counted_from
+    spans = cvt_job.revolution_spans(record["time"], result["run"]["chainRevolution"], first)
     point["statistics"] = cycle_stats.summarize(cvt_job.per_revolution(record, spans))
     point["checks"] = cvt_job.checks(point["statistics"], result)
     point["cpuPerRevolution"] = result["run"]["cpuPerChainRevolution"]
+    if "lcpSolves" in result["run"]:
+        point["lcp"] = {k: result["run"][k] for k in ("lcpSizeMean", "pivots", "lcpSolves", "impacts")}
     return point
+
+
+def handover_points(out, run_in, quick, log):
+    """The points that continue from the handover state: time stepping, and the regularized
+    friction toward Coulomb's law."""
+    state = out / "cvt_handover_state.json"
+    method, step = REFERENCE[0], (1e-6 if quick else REFERENCE[1])
+    log(f"CVT handover state: {method} at {step:g} over the run-in of {run_in} revolutions")
+    cvt_job.simulate(Options(method, step, 0, run_in, state_out=state), out, quiet=True)
+    cvt_file = json.loads((paths.ROOT / "src" / "drives" / "default_cvt.json").read_text())
+    own_run_in, counted = (QUICK_TS_RUN_IN, QUICK_TS_REVOLUTIONS) if quick else (TS_RUN_IN, TS_REVOLUTIONS)
+    points = []
+    for method, step, facets in QUICK_TS_POINTS if quick else TS_POINTS:
+        extra = {"facets": facets} if facets else {}
+        points.append(run_point(method, step, counted, own_run_in, out, counted_from=run_in + own_run_in,
+                                state_in=state, **extra))
+    for v_reg, step in () if quick else FRICTION_LIMIT:
+        cvt_file["contact"]["frictionRegularization"] = v_reg
+        path = out / f"cvt_vreg_{v_reg:g}.json"
+        path.write_text(json.dumps(cvt_file))
+        points.append(run_point(REFERENCE[0], step, counted, own_run_in, out, counted_from=run_in + own_run_in,
+                                vReg=v_reg, cvt=str(path), state_in=state))
+    return points
 
 
 def compare(point, ref):
@@ -115,16 +167,28 @@ def study(out, quick=False, log=print):
     points = []
     for method, settings in (QUICK_SWEEPS if quick else SWEEPS).items():
         for setting in settings:
-            p = run_point(method, setting, revolutions, run_in, run_dir)
-            compare(p, ref)
-            log(f"  {describe(p)}")
-            points.append(p)
+            points.append(run_point(method, setting, revolutions, run_in, run_dir))
+            compare(points[-1], ref)
+            log(f"  {describe(points[-1])}")
+    for p in handover_points(run_dir, run_in, quick, log):
+        compare(p, ref)
+        log(f"  {describe(p)}")
+        points.append(p)
     return {"machine": runs.machine(), "rpm": RPM, "loadTorque": LOAD, "revolutions": revolutions, "runIn": run_in,
+            "handoverRunIn": QUICK_TS_RUN_IN if quick else TS_RUN_IN,
+            "handoverRevolutions": QUICK_TS_REVOLUTIONS if quick else TS_REVOLUTIONS,
             "reference": ref, "referenceCheck": check, "points": points, "quick": quick}
 
 
+def label(p):
+    """The point's series: its method, time stepping's facets, a regularization of its own."""
+    if "facets" in p:
+        return f"{p['method']} ({p['facets']} facets)"
+    return f"{p['method']} (vReg {p['vReg']:g} m/s)" if "vReg" in p else p["method"]
+
+
 def describe(p):
-    head = f"{p['method']} {p['setting']:g}"
+    head = f"{label(p)} {p['setting']:g}"
     if "failure" in p:
         return f"{head}: FAILED ({p['failure']})"
     worst = max(p["errors"].values(), key=lambda e: abs(e["z"]))
@@ -136,16 +200,16 @@ def describe(p):
 def chart(path, r):
     """Work-precision: |error| of each statistic (% of the reference) over CPU per revolution."""
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5), sharex=True)
-    markers = {"fixed-verlet": "o", "fixed-verlet-implicit-joint-damping": "s", "arkode-erk": "^"}
+    series = list(dict.fromkeys(label(p) for p in r["points"]))
     for ax, key in zip(axes.flat, KEYS):
         ref = r["reference"]["statistics"][key]
         band = 100.0 * ref["ci95"] / abs(ref["mean"])
         ax.axhline(band, color="grey", ls=":", lw=0.8, label="reference's 95 % half-width")
-        for method, marker in markers.items():
-            pts = [p for p in r["points"] if p["method"] == method and "failure" not in p]
+        for name, marker in zip(series, "os^DvP<>*hXd"):
+            pts = [p for p in r["points"] if label(p) == name and "failure" not in p]
             if pts:
                 ax.loglog([p["cpuPerRevolution"] for p in pts],
-                          [max(abs(p["errors"][key]["percent"]), 1e-4) for p in pts], marker=marker, label=method)
+                          [max(abs(p["errors"][key]["percent"]), 1e-4) for p in pts], marker=marker, label=name)
                 for p in pts:
                     if not p["consistent"]:
                         ax.plot(p["cpuPerRevolution"], max(abs(p["errors"][key]["percent"]), 1e-4), "x", color="red",
@@ -155,9 +219,10 @@ def chart(path, r):
     for ax in axes[1]:
         ax.set_xlabel("CPU s per chain revolution")
     axes[0, 0].legend(fontsize=7)
-    failed = [describe(p) for p in r["points"] if "failure" in p]
+    failed = [f"{label(p)} at {p['setting']:g}" for p in r["points"] if "failure" in p]
     fig.suptitle(f"Chain CVT, {r['rpm']:g} rpm, {r['loadTorque']:g} N m: work-precision (red x: not accurate: "
-                 "a statistic beyond its tolerance and the scatter, or a check off)" + ("\nfailed: " + "; ".join(failed) if failed else ""), fontsize=9)
+                 "a statistic beyond its tolerance and the scatter, or a check off)" +
+                 ("\nfailed (named blow-ups, see the table): " + "; ".join(failed) if failed else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -192,10 +257,10 @@ def section(r):
               "torque balance | energy balance | verdict |", "|---|---|---|---|---|---|---|---|---|"]
     for p in r["points"]:
         if "failure" in p:
-            lines.append(f"| {p['method']} | {p['setting']:g} | | | | | | | failed: {p['failure']} |")
+            lines.append(f"| {label(p)} | {p['setting']:g} | | | | | | | failed: {p['failure']} |")
             continue
         e, c = p["errors"], p["checks"]
-        lines.append(f"| {p['method']} | {p['setting']:g} | {p['cpuPerRevolution']:.3g} | "
+        lines.append(f"| {label(p)} | {p['setting']:g} | {p['cpuPerRevolution']:.3g} | "
                      f"{e['slip']['percent']:+.2f} % | {e['tightStrandForce']['percent']:+.2f} % | "
                      f"{max(abs(x['z']) for x in e.values()):.2f} | {100 * c['torqueBalanceError']:+.2f} % | "
                      f"{100 * c['energyBalanceError']:+.2f} % | {'accurate' if p['consistent'] else 'off'} |")
@@ -204,7 +269,34 @@ def section(r):
         best = min(good, key=lambda p: p["cpuPerRevolution"])
         lines.append(f"\nCheapest accurate point: {best['method']} at {best['setting']:g}, "
                      f"{best['cpuPerRevolution']:.3g} CPU s per chain revolution (the goal: under one CPU minute).")
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines + friction_law_lines(r)) + "\n"
+
+
+def friction_law_lines(r):
+    """The friction law's share: the means of the reference (regularized, vReg of the CVT file), the
+    regularized model with smaller vReg and time stepping (Coulomb), all after the same run-in."""
+    rows = [p for p in r["points"] if ("vReg" in p or p["method"].startswith("time-stepping")) and "failure" not in p]
+    if not rows:
+        return []
+    lines = ["\nThe friction law: time stepping solves Coulomb's law exactly (up to its polygon of facets; with "
+             "rigid pins circumferentially, the pins closing with Newton impacts at pulley entry), the "
+             "compliant methods a regularized one (full friction beyond the sliding speed vReg = 0.02 m/s, "
+             "src/drives/default_cvt.json); the wrap's sliding speeds (slip times chain speed, a few cm/s) are of "
+             "that order. The points below continue from the reference's state at the end of the run-in "
+             f"({r.get('handoverRunIn', TS_RUN_IN)} revolution(s) of their own, "
+             f"{r.get('handoverRevolutions', TS_REVOLUTIONS)} counted); the regularized model with smaller "
+             "vReg (fixed-verlet, with the smaller step its stiffer friction needs) moves toward time stepping's "
+             "Coulomb values, so that the difference between the two is the regularization's more than the method's.\n",
+             "| friction law, method | slip [%] | F_tight [N] | driven clamping force [N] | power loss [W] | "
+             "CPU s per revolution |", "|---|---|---|---|---|---|"]
+    ref = r["reference"]
+    for p in [ref] + rows:
+        st = p["statistics"]
+        name = "reference, vReg 0.02 m/s" if p is ref else label(p)
+        lines.append(f"| {name} {p['setting']:g} | {100 * st['slip']['mean']:.3f} +- {100 * st['slip']['ci95']:.3f} | "
+                     f"{st['tightStrandForce']['mean']:.0f} | {st['clampingForceDriven']['mean']:.0f} | "
+                     f"{st['powerLoss']['mean']:.1f} | {p['cpuPerRevolution']:.3g} |")
+    return lines
 
 
 def rejudge(r):

@@ -94,6 +94,7 @@ struct PinSheaveLaw {
   double axialStiffness = 0.0;            // [N/m] the pin with its end contacts
   double axialDamping = 0.0;              // [N s/m]
   double friction = 0.0;                  // Coulomb coefficient on each sheave face
+  double restitution = 0.0;               // rigid pins: Newton's coefficient at pulley entry
 };
 
 struct TensionerModel {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/arguments.h"
+#include "cli/contact_stats.h"
 #include "cvt/cvt_assembly.h"
 #include "cvt/cvt_run.h"
 
@@ -25,7 +26,8 @@ void usage() {
   std::fprintf(stderr,
                "usage: chaindrive-cvt [--cvt FILE] [--rpm R] [--load-torque T] [--duration S | --revolutions R]\n"
                "                      [--output-step S] [--method NAME] [--step S] [--rtol R] [--monitored-link K]\n"
-               "                      [--csv FILE] [--quiet]\n"
+               "                      [--friction-facets N] [--state-in FILE] [--state-out FILE] [--csv FILE]\n"
+               "                      [--quiet]\n"
                "  --cvt FILE           CVT description (chaindrive.cvt/1); default: the embedded default CVT\n"
                "  --rpm R              driving-pulley speed [rpm] (default 2000)\n"
                "  --load-torque T      load torque on the driven pulley [N m] (default 0)\n"
@@ -33,19 +35,41 @@ void usage() {
                "  --revolutions R      simulated time in chain revolutions (and an output step more, so that\n"
                "                       the last one ends on the output grid), instead of --duration\n"
                "  --method NAME        fixed-verlet (default), fixed-verlet-implicit-joint-damping, arkode-erk,\n"
-               "                       arkode-erk-fixed\n"
+               "                       arkode-erk-fixed (compliant pins: their friction a regularized law), or\n"
+               "                       time-stepping (Moreau-Jean: the pins' friction a complementarity problem),\n"
+               "                       time-stepping-rigid-pins (the same with the pins axially rigid: unilateral\n"
+               "                       contacts with Newton impacts at pulley entry)\n"
+               "  --friction-facets N  time-stepping: facets of the polygon that linearizes a pin's friction\n"
+               "                       disc (default 8)\n"
                "  --step S             fixed step [s] (default 2e-6); arkode-erk: its largest step\n"
                "  --rtol R             relative tolerance of arkode-erk (default 1e-5)\n"
+               "  --state-in FILE      start from this saved state (chaindrive.state/2; default: the nominal\n"
+               "                       state at t = 0); the run lasts the duration from its time\n"
+               "  --state-out FILE     save the last state (for another method to continue from)\n"
                "  --csv FILE           the outputs at every output step (default step 5e-5 s)\n"
                "Prints the assembly and the summary (means and checks) as JSON.\n");
 }
 
 struct CvtArguments {
-  std::string cvt, csv;
+  std::string cvt, csv, stateIn, stateOut;
   CvtRunOptions run;
   double revolutions = 0.0;  // > 0: the duration in chain revolutions (and an output step more)
   bool quiet = false;
 };
+
+// A method name: an integrator of the compliant pins, or time stepping (the contact method) with
+// compliant or rigid pins.
+void setMethod(const std::string& name, CvtRunOptions& run) {
+  const bool stepping = name == "time-stepping" || name == "time-stepping-rigid-pins";
+  run.contactMethod = stepping ? "time-stepping" : "compliant";
+  run.integrator.rigid.rigidPins = name == "time-stepping-rigid-pins";
+  if (!stepping) run.integrator.method = name;
+}
+
+std::string methodName(const CvtRunOptions& run) {
+  if (run.contactMethod == "compliant") return run.integrator.method;
+  return run.integrator.rigid.rigidPins ? run.contactMethod + "-rigid-pins" : run.contactMethod;
+}
 
 CvtArguments parseArguments(cli::Arguments& args) {
   CvtArguments r;
@@ -57,11 +81,14 @@ CvtArguments parseArguments(cli::Arguments& args) {
     else if (a == "--duration") r.run.duration = args.number();
     else if (a == "--revolutions") r.revolutions = args.number();
     else if (a == "--output-step") r.run.outputStep = args.number();
-    else if (a == "--method") r.run.integrator.method = args.value();
+    else if (a == "--method") setMethod(args.value(), r.run);
+    else if (a == "--friction-facets") r.run.integrator.rigid.frictionFacets = static_cast<int>(args.number());
     else if (a == "--step") r.run.integrator.fixed.step = r.run.integrator.adaptive.maxStep = args.number();
     else if (a == "--rtol") r.run.integrator.adaptive.rtol = args.number();
     else if (a == "--monitored-link") r.run.monitoredLink = static_cast<int>(args.number());
     else if (a == "--csv") r.csv = args.value();
+    else if (a == "--state-in") r.stateIn = args.value();
+    else if (a == "--state-out") r.stateOut = args.value();
     else if (a == "--quiet") r.quiet = true;
     else throw std::invalid_argument("unknown argument '" + a + "'");
   }
@@ -103,11 +130,15 @@ nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtRun
                    {"pretension", layout.pretension},
                    {"clampingForce", {layout.clampingForce[0], layout.clampingForce[1]}},
                    {"closureResidual", m.assembly.closureResidual}};
-  j["run"] = {{"method", run.integrator.method}, {"step", run.integrator.fixed.step},
+  j["run"] = {{"method", methodName(run)}, {"step", run.integrator.fixed.step},
               {"rtol", run.integrator.adaptive.rtol},
               {"drivingSpeed_rpm", run.drivingSpeed * 30.0 / kPi}, {"loadTorque", run.loadTorque},
               {"duration", run.duration}, {"steps", r.steps}, {"cpuSeconds", r.cpuSeconds},
               {"chainRevolution", revolution}, {"cpuPerChainRevolution", r.cpuSeconds * revolution / run.duration}};
+  if (r.contactStats) {
+    j["run"]["frictionFacets"] = run.integrator.rigid.frictionFacets;
+    cli::addContactStats(*r.contactStats, j["run"]);
+  }
   j["means"] = {{"from", s.from}, {"to", s.to}, {"drivingSpeed", s.drivingSpeed}, {"drivenSpeed", s.drivenSpeed},
                 {"slip", s.slip}, {"speedRatio", s.speedRatio}, {"geometricRatio", s.geometricRatio},
                 {"tightStrandForce", s.tightStrandForce}, {"slackStrandForce", s.slackStrandForce},
@@ -125,7 +156,9 @@ int run(const CvtArguments& a) {
   auto model = std::make_shared<const Model>(assembleCvt(desc, &layout));
   CvtRunOptions run = a.run;
   if (a.revolutions > 0.0) run.duration = a.revolutions * chainRevolution(*model, layout, run.drivingSpeed) + run.outputStep;
+  if (!a.stateIn.empty()) run.start = readStateFile(a.stateIn, *model, model->nStates);
   const CvtRunResult r = runCvt(model, run);
+  if (!a.stateOut.empty()) writeStateFile(a.stateOut, *model, r.end);
   if (!a.csv.empty()) writeCsv(a.csv, r);
   if (!a.quiet) std::printf("%s\n", summaryJson(*model, layout, run, r).dump(2).c_str());
   return 0;

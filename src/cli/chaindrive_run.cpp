@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/arguments.h"
+#include "cli/contact_stats.h"
 #include "description/drive_description.h"
 #include "run/inputs.h"
 #include "assembly/model.h"
@@ -320,17 +321,6 @@ void printReport(const Simulation& sim, const RunArguments& r, const RunResult& 
               st.convergenceFailures, st.lastStep);
 }
 
-void addContactStats(const ns::NsStats& cs, nlohmann::json& j) {
-  j["events"] = cs.events;
-  j["impacts"] = cs.impacts;
-  j["lcpSolves"] = cs.lcpSolves;
-  j["lcpSizeMean"] = cs.lcpSolves ? static_cast<double>(cs.lcpSizeSum) / static_cast<double>(cs.lcpSolves) : 0.0;
-  j["lcpSizeMax"] = cs.lcpSizeMax;
-  j["pivots"] = cs.pivots;
-  j["regularizedLcps"] = cs.regularizedLcps;
-  j["contactSteps"] = cs.steps;
-}
-
 // The run's figures as JSON (--summary): CPU time, counters, the failure and its kind.
 void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult& res, double t0, double tEnd) {
   // what ran, how far and at what cost
@@ -360,7 +350,7 @@ void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult&
     j["failureKind"] = res.failureKind;
     j["failureTime"] = res.failureTime;
   }
-  if (const ns::NsStats* cs = sim.contactStats()) addContactStats(*cs, j);
+  if (const ns::NsStats* cs = sim.contactStats()) cli::addContactStats(*cs, j);
   std::ofstream sj(r.summaryPath);
   if (!sj) throw std::runtime_error("cannot write " + r.summaryPath);
   sj << j.dump(1) << "\n";

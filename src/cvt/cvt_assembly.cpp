@@ -79,6 +79,7 @@ void setChain(const CvtDescription& d, Model& m) {
   law.axialStiffness = d.pinAxialStiffness;
   law.axialDamping = d.pinAxialDamping;
   law.friction = d.friction;
+  law.restitution = d.restitution;
 }
 
 void addPulley(Model& m, const std::string& name, Vec2 center, double inertia, bool prescribed) {

@@ -76,6 +76,7 @@ void readContact(Fields& top, CvtDescription& d) {
   if (!c.valid()) return;
   d.friction = c.number("friction", 0.0, 1.0, std::nullopt, "");
   d.frictionRegularization = c.number("frictionRegularization", 0.0, 1.0, 0.02, "m/s", true);
+  d.restitution = c.number("restitution", 0.0, 1.0, 0.0, "");
   c.finish();
 }
 

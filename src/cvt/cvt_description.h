@@ -33,6 +33,7 @@ struct CvtDescription {
   // the pin-sheave contact
   double friction = 0.0;         // Coulomb coefficient (traction fluid)
   double frictionRegularization = 0.02;  // [m/s] velocity scale of the regularised Coulomb law
+  double restitution = 0.0;      // Newton's coefficient of a pin's impact at pulley entry (rigid pins)
 };
 
 /// Parses and validates a CVT description. Throws DescriptionError listing every problem.

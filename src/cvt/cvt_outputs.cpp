@@ -34,7 +34,7 @@ CvtOutputs cvtOutputs(const Model& m, const Data& d, const Outputs& out, int mon
   const double wedge = 2.0 * m.pinSheave.tanWedge;  // (the wedge's normal force over the pin's axial force)
   for (int i = 0; i < d.nContacts; ++i) {
     const ContactPoint& p = d.contacts[i];
-    if (p.kind != ContactPoint::Kind::PinSheave || p.gap >= 0.0) continue;
+    if (p.kind != ContactPoint::Kind::PinSheave || p.fN <= 0.0) continue;  // (pressed: compliant or rigid)
     const double axial = p.fN / wedge;
     c.clampingForce[p.element] += axial;
     c.pinsInContact[p.element] += axial > 0.0 ? 1 : 0;

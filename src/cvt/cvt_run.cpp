@@ -31,19 +31,21 @@ struct Mean {
 CvtRunResult runCvt(std::shared_ptr<const Model> m, const CvtRunOptions& opt) {
   SimulationOptions so;
   so.integrator = opt.integrator;
+  so.contactMethod = opt.contactMethod;
   so.monitoredLink = opt.monitoredLink;
   auto inputs = std::make_unique<HeldInputs>(*m);
   HeldInputs& held = *inputs;
   held.values.crankSpeed = opt.drivingSpeed;
   held.values.loadTorque[kDrivenPulley] = opt.loadTorque;
   Simulation sim(m, so, std::move(inputs));
-  sim.startFrom(0.0, cvtNominalState(*m, opt.drivingSpeed));
+  const double t0 = opt.start ? opt.start->time : 0.0;
+  sim.startFrom(t0, opt.start ? opt.start->y : cvtNominalState(*m, opt.drivingSpeed));
   CvtRunResult r;
   const long long outputs = std::llround(opt.duration / opt.outputStep);
   r.samples.reserve(static_cast<std::size_t>(outputs + 1));
   const double cpu0 = threadCpuSeconds();
   for (long long k = 0; k <= outputs; ++k) {
-    if (k > 0) sim.advanceTo(static_cast<double>(k) * opt.outputStep);
+    if (k > 0) sim.advanceTo(t0 + static_cast<double>(k) * opt.outputStep);
     const Outputs& out = sim.outputs();
     CvtSample s;
     s.time = sim.time();
@@ -53,7 +55,9 @@ CvtRunResult runCvt(std::shared_ptr<const Model> m, const CvtRunOptions& opt) {
   }
   r.cpuSeconds = threadCpuSeconds() - cpu0;
   r.steps = sim.integratorStats().steps;
-  r.summary = summarizeCvt(*m, r.samples, opt.statisticsFrom * opt.duration, opt.duration);
+  if (const ns::NsStats* cs = sim.contactStats()) r.contactStats = *cs;
+  r.end = {sim.time(), sim.state()};
+  r.summary = summarizeCvt(*m, r.samples, t0 + opt.statisticsFrom * opt.duration, t0 + opt.duration);
   return r;
 }
 

@@ -5,12 +5,16 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "assembly/model.h"
 #include "cvt/cvt_outputs.h"
 #include "dynamics/dynamics.h"
 #include "integrators/ode_system.h"
+#include "nonsmooth/system.h"
+#include "run/state_file.h"
 
 namespace chaindrive {
 
@@ -20,8 +24,11 @@ struct CvtRunOptions {
   double duration = 0.2;          // [s]
   double outputStep = 5e-5;       // [s]
   double statisticsFrom = 0.5;    // the means start at this fraction of the duration
-  IntegratorSettings integrator;  // method and step (default: fixed-verlet at 2 us)
+  std::string contactMethod = "compliant";  // or "time-stepping": the pins' friction as complementarity
+  IntegratorSettings integrator;  // method and step (default: fixed-verlet at 2 us; time stepping: its step)
   int monitoredLink = -1;         // the pin of the Figure 9 outputs (-1: the model's)
+  std::optional<StateSnapshot> start;  // a saved state to start from (else the nominal state at 0);
+                                       // the run lasts `duration` from its time
   CvtRunOptions() {
     integrator.method = "fixed-verlet";
     integrator.fixed.step = 2e-6;
@@ -60,6 +67,8 @@ struct CvtRunResult {
   CvtSummary summary;
   double cpuSeconds = 0.0;        // of the integration (outputs included)
   long long steps = 0;
+  std::optional<ns::NsStats> contactStats;  // time stepping: its LCPs
+  StateSnapshot end;              // the last state
 };
 
 /// Runs the model (a CVT: assembleCvt) with the options; throws IntegrationError when the method

@@ -14,13 +14,20 @@ PinSheaveForce pinSheaveForce(const PinSheaveLaw& law, double vReg, double penet
   const double spring = law.axialStiffness * u;
   f.axial = std::max(0.0, spring + law.axialDamping * uRate);
   f.normal = twoTan * f.axial;
-  const double limit = 2.0 * law.friction * f.axial / law.cosWedge;  // mu N on each of the two faces
+  const double limit = pinFrictionLimit(law, f.axial);
   const double sliding = std::sqrt(vRadial * vRadial + vCircumferential * vCircumferential + vReg * vReg);
   f.frictionRadial = -limit * vRadial / sliding;
   f.frictionCircumferential = -limit * vCircumferential / sliding;
-  f.power = (f.axial - spring) * uRate - f.frictionRadial * vRadial - f.frictionCircumferential * vCircumferential;
+  f.dampingPower = (f.axial - spring) * uRate;
+  f.frictionPower = -f.frictionRadial * vRadial - f.frictionCircumferential * vCircumferential;
   f.energy = 0.5 * spring * u;
   return f;
+}
+
+double constrainedPinPower(const Model& m, const ContactPoint& c) {
+  if (c.gap >= 0.0) return 0.0;
+  const PinSheaveForce f = pinSheaveForce(m.pinSheave, m.frictionRegularization, -c.gap, c.vN, c.vT);
+  return f.dampingPower - c.fNFriction * c.vN - c.fT * c.vT;
 }
 
 namespace {
@@ -86,10 +93,11 @@ int pinSheaveContacts(const Model& m, Data& d, double margin, bool forces, int c
       d.deepestGap = std::min(d.deepestGap, c.gap);
       if (forces && c.gap < 0.0) {
         const PinSheaveForce f = pinSheaveForce(m.pinSheave, m.frictionRegularization, -c.gap, c.vN, c.vT);
+        // without d.pinFriction the friction is a constraint's: its force and power left out
         c.fN = f.normal;
-        c.fNFriction = f.frictionRadial;
-        c.fT = f.frictionCircumferential;
-        power += f.power;
+        c.fNFriction = d.pinFriction ? f.frictionRadial : 0.0;
+        c.fT = d.pinFriction ? f.frictionCircumferential : 0.0;
+        power += f.dampingPower + (d.pinFriction ? f.frictionPower : 0.0);
         applyPinForce(m, d, c);
       }
       if (list) d.contacts[count++] = c;

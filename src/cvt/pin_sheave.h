@@ -19,7 +19,8 @@ struct PinSheaveForce {
   double normal = 0.0;                 // F_n [N], radially outwards on the pin
   double frictionRadial = 0.0;         // [N] on the pin, along the outward radius
   double frictionCircumferential = 0.0;  // [N] on the pin, along the counterclockwise tangent
-  double power = 0.0;                  // [W] dissipated (axial damping and friction)
+  double dampingPower = 0.0;           // [W] dissipated by the axial damping
+  double frictionPower = 0.0;          // [W] dissipated by the friction
   double energy = 0.0;                 // [J] elastic, in the pin
 };
 
@@ -29,10 +30,19 @@ struct PinSheaveForce {
 PinSheaveForce pinSheaveForce(const PinSheaveLaw& law, double vReg, double penetration, double vRadial,
                               double vCircumferential);
 
+/// The Coulomb bound of the friction in the sheave plane on a pin pressed with `axial` [N]: mu N
+/// on each of the two faces, N = axial / cos(beta).
+inline double pinFrictionLimit(const PinSheaveLaw& law, double axial) { return 2.0 * law.friction * axial / law.cosWedge; }
+
+/// The power dissipated at a pin contact c whose friction forces (fNFriction, fT) are a
+/// constraint's: its axial damping by the law and the friction's on the pin's sliding.
+double constrainedPinPower(const Model& m, const ContactPoint& c);
+
 /// Stage 4 on a CVT: the sheaves placed at the ratio input (d.pulleyFreeRadius and
 /// pulleyRunningRadius from Model::ratioTable; the assembled ones without), then every pin (link
 /// i's rear pin) against every pulley (Model::pulleys), its
-/// forces added to the links' and pulleys' generalized forces in d.gen when `forces`, each closed
+/// forces added to the links' and pulleys' generalized forces in d.gen when `forces` (without
+/// the friction when d.pinFriction is off), each closed
 /// contact listed from d.contacts[count] on when d lists them, d.deepestGap lowered to the
 /// deepest. Returns the number of contacts listed in all; adds the dissipated power to `power`.
 int pinSheaveContacts(const Model& m, Data& d, double margin, bool forces, int count, double& power);

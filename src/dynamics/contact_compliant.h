@@ -104,7 +104,7 @@ inline void addContactDamping(const Model& m, const ContactLaw& law, const Conta
 
 /// Adds the generalized forces of contact c (forces c.fN, c.fT) to the link and rotor entries.
 inline void addContactGen(const Model& m, const ContactPoint& c, double* gen) {
-  const Vec2 f = c.fN * c.normal + c.fT * c.tangent;
+  const Vec2 f = contactForce(c);
   gen[m.linkGen(c.link, Model::kX)] += f.x;
   gen[m.linkGen(c.link, Model::kY)] += f.y;
   gen[m.linkGen(c.link, Model::kGamma)] += cross(c.rLink, f);

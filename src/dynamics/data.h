@@ -167,6 +167,9 @@ struct Data {
   // (and, for ideal joints, the journal bearings) and treat them as constraints instead
   bool compliantContacts = true;
   bool jointForces = true;
+  // a CVT's pins: their friction as a force law; off, only the normal force of the pins' axial
+  // compliance (the time-stepping method makes the friction a constraint)
+  bool pinFriction = true;
   // whether an evaluation with the compliant contacts lists them (contacts, nContacts); off, it
   // only sums their forces and keeps the deepest penetration (deepestGap): the evaluations of
   // schemes that read nothing but the derivatives (OdeSystem::setDerivativesOnly)

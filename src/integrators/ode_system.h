@@ -104,6 +104,9 @@ struct RigidContactOptions {
                                       // it; event driven: open beyond it)
   std::string recordLcpDirectory;     // write the LCPs solved (Siconos format) into this directory
   int recordLcpCount = 0;             // ... the first this many
+  int frictionFacets = 8;             // time stepping on a CVT: facets of the polygon that
+                                      // linearizes a pin's friction disc (>= 3)
+  bool rigidPins = false;             // time stepping on a CVT: the pins axially rigid (rigid_drive.h)
 };
 
 /// The event-driven method on a drive.

@@ -150,13 +150,15 @@ void LemkeSolver::column(const Eigen::Ref<const Eigen::MatrixXd>& M, int n, int 
 // positive entry: ray termination).
 int LemkeSolver::ratioTest(int n, double qNorm, double colNorm) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
+  // the 1-norms of the rows of B^-1, summed column by column (contiguous; each row's sum in the
+  // order of its columns all the same)
+  auto norms = rowNorm_.head(n);
+  norms.setZero();
+  for (int c = 0; c < n; ++c) norms += binv_.col(c).head(n).cwiseAbs();
   int nc = 0;
   for (int i = 0; i < n; ++i) {
     const double ai = a_(i);
-    if (!(ai > 0.0)) continue;
-    const double rn = binv_.row(i).head(n).lpNorm<1>();
-    rowNorm_(i) = rn;
-    if (ai > kPivotTolerance * rn * colNorm) cand_[static_cast<std::size_t>(nc++)] = i;
+    if (ai > 0.0 && ai > kPivotTolerance * norms(i) * colNorm) cand_[static_cast<std::size_t>(nc++)] = i;
   }
   if (nc == 0) return -1;
 

@@ -7,7 +7,25 @@
 namespace chaindrive::ns {
 
 namespace {
-const SparseColumn& column(const ContactRow& r, int s) { return s == 0 ? r.contact->wN : r.contact->wT; }
+
+// The two directions of a row in the Delassus block and their offsets: normal and tangent, or a
+// compliant normal's two friction directions.
+const SparseColumn& column(const ContactRow& r, int s) {
+  if (r.kind == RowKind::PolygonFriction) return s == 0 ? r.contact->wT : r.contact->wT2;
+  return s == 0 ? r.contact->wN : r.contact->wT;
+}
+double offset(const ContactRow& r, int s) {
+  if (r.kind == RowKind::PolygonFriction) return s == 0 ? r.bT : r.bT2;
+  return s == 0 ? r.bN : r.bT;
+}
+int variables(const ContactRow& r) {
+  if (r.kind == RowKind::Friction) return 3;
+  return r.kind == RowKind::PolygonFriction ? r.facets + 1 : 1;
+}
+// the polygon's facet direction j of d, in the row's two directions
+double facetCos(int j, int d) { return std::cos(2.0 * 3.14159265358979323846 * j / d); }
+double facetSin(int j, int d) { return std::sin(2.0 * 3.14159265358979323846 * j / d); }
+
 }  // namespace
 
 // The contact forces F_U (normal and tangential per contact row) and the bilateral forces F_B
@@ -40,6 +58,7 @@ const ConstraintSolution& ConstraintSolver::solve(const std::vector<ContactRow>&
 void ConstraintSolver::clearSolution(int nc, int nb) {
   sol_.fN.assign(nc, 0.0);
   sol_.fT.assign(nc, 0.0);
+  sol_.fT2.assign(nc, 0.0);
   sol_.fB.assign(nb, 0.0);
   sol_.sticking.assign(nc, 0);
   sol_.status = lcp::Status::Solved;
@@ -55,7 +74,7 @@ void ConstraintSolver::assembleDelassus(const std::vector<ContactRow>& rows, con
   b_.resize(nu);
   for (int a = 0; a < nu; ++a) {
     const SparseColumn& ca = column(rows[a / 2], a % 2);
-    b_[a] = a % 2 == 0 ? rows[a / 2].bN : rows[a / 2].bT;
+    b_[a] = offset(rows[a / 2], a % 2);
     for (int c = a; c < nu; ++c) D_(a, c) = D_(c, a) = weightedDot(ca, column(rows[c / 2], c % 2), minv);
   }
 }
@@ -90,15 +109,23 @@ bool ConstraintSolver::condenseBilateral(const std::vector<ContactRow>& rows,
 
 // The forces from the LCP variables, F = T z: one variable (F_N) per NormalOnly or SlidingFolded
 // row (F_T = -mu s F_N folded in), three per Friction row, z = (F_N, F'_T, xi) with
-// F_T = F'_T - mu F_N (the header's table).
+// F_T = F'_T - mu F_N, d + 1 per PolygonFriction row (the header's table).
 void ConstraintSolver::buildForceMap(const std::vector<ContactRow>& rows) {
   const int nc = static_cast<int>(rows.size());
   int nz = 0;
-  for (const ContactRow& r : rows) nz += r.kind == RowKind::Friction ? 3 : 1;
+  for (const ContactRow& r : rows) nz += variables(r);
   T_.setZero(2 * nc, nz);
   int o = 0;
   for (int c = 0; c < nc; ++c) {
     const ContactRow& r = rows[c];
+    if (r.kind == RowKind::PolygonFriction) {
+      for (int j = 0; j < r.facets; ++j) {
+        T_(2 * c, o + j) = facetCos(j, r.facets);
+        T_(2 * c + 1, o + j) = facetSin(j, r.facets);
+      }
+      o += r.facets + 1;
+      continue;
+    }
     T_(2 * c, o) = 1.0;
     if (r.kind == RowKind::Friction) {
       T_(2 * c + 1, o) = -r.mu;
@@ -146,7 +173,7 @@ void ConstraintSolver::solveContactLcp(const std::vector<ContactRow>& rows, int 
 }
 
 // (M, q) of the LCP w = M z + q: the rows of D T for u_N (and for Friction rows u_T + xi), and
-// for Friction rows the cone row 2 mu F_N - F'_T.
+// for Friction rows the cone row 2 mu F_N - F'_T; PolygonFriction rows: polygonRows.
 void ConstraintSolver::assembleLcp(const std::vector<ContactRow>& rows) {
   const int nc = static_cast<int>(rows.size());
   const Eigen::Index nz = z_.size();
@@ -156,6 +183,11 @@ void ConstraintSolver::assembleLcp(const std::vector<ContactRow>& rows) {
   int o = 0;
   for (int c = 0; c < nc; ++c) {
     const ContactRow& r = rows[c];
+    if (r.kind == RowKind::PolygonFriction) {
+      polygonRows(r, c, o);
+      o += r.facets + 1;
+      continue;
+    }
     M_.row(o) = DT_.row(2 * c);
     q_[o] = b_[2 * c];
     if (r.kind == RowKind::Friction) {
@@ -171,16 +203,40 @@ void ConstraintSolver::assembleLcp(const std::vector<ContactRow>& rows) {
   }
 }
 
-// F_U = T z per row; a friction row sticks when its force lies strictly inside the cone.
+// A PolygonFriction row c with variables from o: per facet j, e_j . (D T z + b) + lambda, and
+// the bound row bound - sum_j beta_j.
+void ConstraintSolver::polygonRows(const ContactRow& r, int c, int o) {
+  const int d = r.facets;
+  for (int j = 0; j < d; ++j) {
+    const double ex = facetCos(j, d), ey = facetSin(j, d);
+    M_.row(o + j) = ex * DT_.row(2 * c) + ey * DT_.row(2 * c + 1);
+    M_(o + j, o + d) += 1.0;
+    q_[o + j] = ex * b_[2 * c] + ey * b_[2 * c + 1];
+    M_(o + d, o + j) = -1.0;
+  }
+  q_[o + d] = r.bound;
+}
+
+// F_U = T z per row; a friction row sticks when its force lies strictly inside the cone (for a
+// polygon: the sum of its facet forces below the bound).
 void ConstraintSolver::contactForces(const std::vector<ContactRow>& rows) {
   const int nc = static_cast<int>(rows.size());
   F_ = T_ * z_;
+  int o = 0;
   for (int c = 0; c < nc; ++c) {
-    sol_.fN[c] = F_[2 * c];
-    sol_.fT[c] = F_[2 * c + 1];
-    // strictly inside the friction cone: sticking; on its boundary: sliding (or about to)
-    if (rows[c].kind == RowKind::Friction)
-      sol_.sticking[c] = std::fabs(sol_.fT[c]) < rows[c].mu * sol_.fN[c] * (1.0 - 1e-9) ? 1 : 0;
+    const ContactRow& r = rows[c];
+    if (r.kind == RowKind::PolygonFriction) {
+      sol_.fT[c] = F_[2 * c];
+      sol_.fT2[c] = F_[2 * c + 1];
+      sol_.sticking[c] = z_.segment(o, r.facets).sum() < r.bound * (1.0 - 1e-9) ? 1 : 0;
+    } else {
+      sol_.fN[c] = F_[2 * c];
+      sol_.fT[c] = F_[2 * c + 1];
+      // strictly inside the friction cone: sticking; on its boundary: sliding (or about to)
+      if (r.kind == RowKind::Friction)
+        sol_.sticking[c] = std::fabs(sol_.fT[c]) < r.mu * sol_.fN[c] * (1.0 - 1e-9) ? 1 : 0;
+    }
+    o += variables(r);
   }
 }
 
@@ -219,7 +275,7 @@ double projectPositions(NonsmoothSystem& sys, double t, double* q, const double*
     bB.clear();
     worst = 0.0;
     for (const Contact& c : cs.contacts) {
-      if (c.gap >= 0.0) continue;
+      if (c.gap >= 0.0 || c.compliantNormal()) continue;  // (a compliant normal may penetrate)
       worst = std::max(worst, -c.gap);
       ContactRow r;
       r.contact = &c;

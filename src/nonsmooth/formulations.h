@@ -8,6 +8,14 @@
 //                  w = (u_N, u_T + xi, 2 mu F_N - F'_T)   (the decomposition of eq. 7 into eq. 8)
 //   SlidingFolded  a sliding contact with known direction s: F_T = -mu s F_N folded into the
 //                  normal column (the W_G mu_G term of eq. 1); 0 <= u_N _|_ F_N >= 0
+//   PolygonFriction  a compliant normal (Contact::compliantNormal): friction only, in the plane
+//                  of its two directions, the friction cone (a disc of radius `bound`, the
+//                  normal force being known) linearized by a polygon of d facets inscribed in
+//                  it, Stewart and Trinkle's LCP with the normal force given:
+//                  z = (beta_1..beta_d, lambda), F = sum_j e_j beta_j (e_j at the angles
+//                  2 pi j / d, so the radial and circumferential bounds are exact),
+//                  w = (e_j . u + lambda, bound - sum_j beta_j): lambda is the sliding speed
+//                  along the facet most opposed to u (maximal dissipation), 0 when sticking
 // The same assembly serves the impact law (eq. 10-12, b = (1 + e) gdot_A), the acceleration
 // level (eq. 5-8, b = W^T M^-1 h + wbar) and the velocity level of time stepping.
 #pragma once
@@ -23,7 +31,7 @@
 
 namespace chaindrive::ns {
 
-enum class RowKind { NormalOnly, Friction, SlidingFolded };
+enum class RowKind { NormalOnly, Friction, SlidingFolded, PolygonFriction };
 
 struct ContactRow {
   const Contact* contact = nullptr;
@@ -31,6 +39,9 @@ struct ContactRow {
   double mu = 0.0;         // friction coefficient used (Friction, SlidingFolded)
   double slideSign = 0.0;  // SlidingFolded: sign of the sliding velocity
   double bN = 0.0, bT = 0.0;
+  double bT2 = 0.0;        // PolygonFriction: the offset along the second direction
+  double bound = 0.0;      // PolygonFriction: the friction's bound (force or impulse)
+  int facets = 0;          // PolygonFriction: the polygon's number of facets (>= 3)
 };
 
 struct ConstraintSolution {
@@ -39,8 +50,9 @@ struct ConstraintSolution {
   int pivots = 0;
   double error = 0.0;
   std::vector<double> fN, fT;   // per contact row: force (or impulse) along normal and tangent
+  std::vector<double> fT2;      // per contact row: along the second friction direction
   std::vector<double> fB;       // per bilateral constraint
-  std::vector<char> sticking;   // Friction rows: inside the cone (xi = 0)
+  std::vector<char> sticking;   // Friction and PolygonFriction rows: inside the cone
   bool regularized = false;     // solved only after the regularization (see ConstraintSolver)
   lcp::Result last;             // Lemke's result of the last attempt (its pivots and cap)
   bool solved() const { return status == lcp::Status::Solved; }
@@ -107,6 +119,7 @@ class ConstraintSolver {
   void buildForceMap(const std::vector<ContactRow>& rows);
   void solveContactLcp(const std::vector<ContactRow>& rows, int nb, int maxPivots);
   void assembleLcp(const std::vector<ContactRow>& rows);
+  void polygonRows(const ContactRow& r, int c, int o);
   void contactForces(const std::vector<ContactRow>& rows);
   void bilateralForces(int nc, int nb);
   void writeLcp(const std::string& path, int nc, int nb) const;

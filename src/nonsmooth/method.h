@@ -14,6 +14,7 @@ struct ContactForce {
   int tag = -1;
   long long id = 0;
   double fN = 0.0, fT = 0.0;
+  double fT2 = 0.0;  // a compliant normal's second friction direction (Contact::wT2)
 };
 
 class NonsmoothMethod {

@@ -10,6 +10,9 @@ namespace chaindrive::ns {
 MoreauJean::MoreauJean(NonsmoothSystem& sys, const MoreauJeanSettings& s)
     : NonsmoothMethod(sys.size()), sys_(sys), settings_(s), minv_(sys.inverseMass()), n_(sys.size()) {
   if (!(s.step > 0.0)) throw std::invalid_argument("time-stepping needs a positive step");
+  if (s.frictionFacets < 3)
+    throw std::invalid_argument("frictionFacets " + std::to_string(s.frictionFacets) +
+                                ": the friction polygon needs at least 3 facets");
   grid_.unit = s.step;
   if (!s.recordLcpDirectory.empty()) solver_.record(s.recordLcpDirectory, s.recordLcpCount);
   qm_.assign(n_, 0.0);
@@ -28,6 +31,7 @@ void MoreauJean::reset(double t, const double* q, const double* v) {
   std::copy(v, v + n_, v_.begin());
   forces_.clear();
   stuck_.clear();
+  active_.clear();
   // start on the constraints (a pre-loaded compliant state penetrates by micrometres)
   projectPositions(sys_, t_, q_.data(), v_.data(), solver_);
 }
@@ -76,7 +80,12 @@ void MoreauJean::activeConstraints(double h, double tm) {
   for (int i = 0; i < n_; ++i) vmax = std::max(vmax, std::fabs(v_[i]));
   sys_.constraints(tm, qm_.data(), v_.data(), std::max(settings_.gapTolerance, 2.0 * h * vmax), false, cs_);
   rows_.clear();
+  bool impact = false;
   for (const Contact& c : cs_.contacts) {
+    if (c.compliantNormal()) {
+      if (c.frictionBound > 0.0) rows_.push_back(polygonRow(c, h));
+      continue;
+    }
     const double gdot = c.wN.dot(v_.data());
     if (c.gap + 0.5 * h * gdot > settings_.gapTolerance) continue;
     ContactRow r;
@@ -87,13 +96,31 @@ void MoreauJean::activeConstraints(double h, double tm) {
     r.bN = c.wN.dot(vfree_.data()) + c.restitution * std::min(0.0, gdot);
     r.bT = c.wT.dot(vfree_.data());
     rows_.push_back(r);
+    // an impact: a contact that closes approaching (it was not active in the last step)
+    impact = impact || (gdot < 0.0 && !std::binary_search(active_.begin(), active_.end(), c.id));
   }
+  if (impact) ++stats_.impacts;
+  active_.clear();
+  for (const ContactRow& r : rows_) active_.push_back(r.contact->id);
+  std::sort(active_.begin(), active_.end());
   bil_.clear();
   bB_.clear();
   for (const Bilateral& b : cs_.bilateral) {
     bil_.push_back(&b);
     bB_.push_back(b.w.dot(vfree_.data()) + 2.0 * b.g / h);
   }
+}
+
+// A compliant normal's friction: the impulse bound of the step, the free relative velocities.
+ContactRow MoreauJean::polygonRow(const Contact& c, double h) const {
+  ContactRow r;
+  r.contact = &c;
+  r.kind = RowKind::PolygonFriction;
+  r.facets = settings_.frictionFacets;
+  r.bound = h * c.frictionBound;
+  r.bT = c.wT.dot(vfree_.data());
+  r.bT2 = c.wT2.dot(vfree_.data());
+  return r;
 }
 
 // v+ = v_free + M^-1 W P from the LCP's impulses; the forces (P / h) and the contacts that stick
@@ -114,6 +141,7 @@ double MoreauJean::applyImpulses(double h) {
   for (std::size_t k = 0; k < rows_.size(); ++k) {
     addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), vnew_.data());
     addImpulse(rows_[k].contact->wT, s.fT[k], minv_.data(), vnew_.data());
+    addImpulse(rows_[k].contact->wT2, s.fT2[k], minv_.data(), vnew_.data());
   }
   for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), vnew_.data());
   bilateralForces_.resize(bil_.size());
@@ -124,9 +152,10 @@ double MoreauJean::applyImpulses(double h) {
     const Contact& c = *rows_[k].contact;
     const double uN = 0.5 * (c.wN.dot(v_.data()) + c.wN.dot(vnew_.data()));
     const double uT = 0.5 * (c.wT.dot(v_.data()) + c.wT.dot(vnew_.data()));
-    contactWork += s.fN[k] * uN + s.fT[k] * uT;
+    const double uT2 = 0.5 * (c.wT2.dot(v_.data()) + c.wT2.dot(vnew_.data()));
+    contactWork += s.fN[k] * uN + s.fT[k] * uT + s.fT2[k] * uT2;
     if (s.sticking[k]) stuck_.push_back(c.id);
-    forces_.push_back(ContactForce{c.tag, c.id, s.fN[k] / h, s.fT[k] / h});
+    forces_.push_back(ContactForce{c.tag, c.id, s.fN[k] / h, s.fT[k] / h, s.fT2[k] / h});
   }
   for (std::size_t k = 0; k < bil_.size(); ++k)
     contactWork += s.fB[k] * 0.5 * (bil_[k]->w.dot(v_.data()) + bil_[k]->w.dot(vnew_.data()));
@@ -141,8 +170,8 @@ void MoreauJean::accountEnergy(double h, double tm, double contactWork) {
   for (std::size_t k = 0; k < rows_.size(); ++k) {
     const Contact& c = *rows_[k].contact;
     const ConstraintSolution& s = solver_.solution();
-    for (const SparseColumn* col : {&c.wN, &c.wT}) {
-      const double f = col == &c.wN ? s.fN[k] : s.fT[k];
+    for (const SparseColumn* col : {&c.wN, &c.wT, &c.wT2}) {
+      const double f = col == &c.wN ? s.fN[k] : col == &c.wT ? s.fT[k] : s.fT2[k];
       for (int j = 0; j < col->n; ++j)
         if (minv_[col->idx[j]] == 0.0) drive -= f * col->val[j] * 0.5 * (v_[col->idx[j]] + vnew_[col->idx[j]]);
     }

@@ -6,6 +6,9 @@
 // tolerance):
 //   0 <= u_N+ + e u_N-  _|_  P_N >= 0,   |P_T| <= mu P_N (maximal dissipation),
 // bilateral constraints W_B^T v+ = -2 g_B(q_m) / h (they close at the end of the step).
+// Contacts with a compliant normal (system.h) enter with their friction only, bounded by the
+// normal force of the midpoint, |P_T| <= h F_bound, in a polygon of frictionFacets facets: their
+// closure is the smooth force's, so they see no impact.
 // Accumulating impacts (Zeno) pass naturally; the velocity LCP always has a solution for
 // positive definite Delassus matrices (Stewart-Trinkle, Anitescu-Potra); a failed LCP is
 // reported as an error with the time and the Lemke status.
@@ -27,6 +30,8 @@ struct MoreauJeanSettings {
   double gapTolerance = 1e-10; // [m] a contact is active when its predicted gap is below this
                                // (keeps resting contacts active against rounding)
   int maxPivots = -1;
+  int frictionFacets = 8;      // facets of the polygon that linearizes a compliant normal's
+                               // friction disc (formulations.h, PolygonFriction)
   std::string recordLcpDirectory;  // write the first recordLcpCount LCPs there (Siconos format)
   int recordLcpCount = 0;
 };
@@ -45,6 +50,7 @@ class MoreauJean : public NonsmoothMethod {
   void step(double h);
   void freeMotion(double h, double tm);
   void activeConstraints(double h, double tm);
+  ContactRow polygonRow(const Contact& c, double h) const;
   double applyImpulses(double h);
   void accountEnergy(double h, double tm, double contactWork);
 
@@ -59,6 +65,7 @@ class MoreauJean : public NonsmoothMethod {
   std::vector<const Bilateral*> bil_;
   std::vector<double> bB_;
   std::vector<long long> stuck_;      // ids of contacts that stuck in the last step (sorted)
+  std::vector<long long> active_;     // ids of the contacts active in the last step (sorted)
   TimeGrid grid_;                     // t0 (the last reset) + k step
   long long k_ = 0;                   // grid index of the state
 };

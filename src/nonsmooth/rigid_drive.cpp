@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cvt/pin_sheave.h"
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/health.h"
@@ -11,7 +12,7 @@ namespace chaindrive {
 namespace {
 
 long long contactId(const ContactPoint& c) {
-  const long long kind = c.kind == ContactPoint::Kind::RollerSprocket ? 0 : 1;
+  const long long kind = static_cast<long long>(c.kind);
   return ((((kind * 16384 + c.link) * 2 + c.end) * 256 + c.element) * 256) + (c.face < 0 ? 255 : c.face);
 }
 
@@ -21,6 +22,7 @@ bool sameContact(const Model& m, const ContactPoint& id, const Data& d, double m
   const int r = id.rotor;
   const double cosA = r >= 0 ? d.rotorCos[r] : 1.0, sinA = r >= 0 ? d.rotorSin[r] : 0.0;
   const double rate = r >= 0 ? d.rotorRate[r] : 0.0, angle = r >= 0 ? d.rotorAngle[r] : 0.0;
+  if (id.kind == ContactPoint::Kind::PinSheave) return false;  // (no acceleration terms: time stepping only)
   if (id.kind == ContactPoint::Kind::RollerSprocket)
     return rollerSprocketKinematics(m, id.element, id.link, id.end, lk, angle, cosA, sinA, rate, margin, out);
   return plateGuideKinematics(m, id.element, id.face, id.link, lk, cosA, sinA, rate, margin, out);
@@ -29,8 +31,9 @@ bool sameContact(const Model& m, const ContactPoint& id, const Data& d, double m
 }  // namespace
 
 RigidContactDrive::RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints,
-                                     const HealthLimits& health)
-    : model_(std::move(m)), in_(in), ideal_(idealJoints), health_(health), d_(*model_), dp_(*model_) {
+                                     const HealthLimits& health, bool rigidPins)
+    : model_(std::move(m)), in_(in), ideal_(idealJoints), rigidPins_(rigidPins), health_(health), d_(*model_),
+      dp_(*model_) {
   const Model& md = *model_;
   n_ = 3 * md.chain.links + static_cast<int>(md.rotors.size());
   minv_.assign(n_, 0.0);
@@ -42,8 +45,11 @@ RigidContactDrive::RigidContactDrive(std::shared_ptr<const Model> m, const Input
     minv_[md.rotorGen(static_cast<int>(r))] = md.rotors[r].prescribed ? 0.0 : 1.0 / md.rotors[r].inertia;
   y_.assign(md.nStates, 0.0);
   yp_.assign(md.nStates, 0.0);
+  // a CVT's compliant pins keep the normal force of their axial compliance among the smooth
+  // forces, their friction is the constraint (compliant normals, system.h)
   for (Data* d : {&d_, &dp_}) {
-    d->compliantContacts = false;
+    d->compliantContacts = !md.pulleys.empty() && !rigidPins_;
+    d->pinFriction = false;
     d->jointForces = !ideal_;
   }
   inputs_.loadTorque.assign(md.rotors.size(), 0.0);
@@ -137,8 +143,13 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
     }
     plus = &cp;
   }
+  pinNormal_.assign(last_.size(), 0.0);
   for (std::size_t k = 0; k < last_.size(); ++k) {
-    const ContactPoint& c = last_[k];
+    ContactPoint& c = last_[k];
+    if (c.kind == ContactPoint::Kind::PinSheave) {
+      out.contacts.push_back(pinContact(c, static_cast<int>(k)));
+      continue;
+    }
     const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
     ns::Contact k2;
     k2.id = contactId(c);
@@ -188,6 +199,40 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
   }
 }
 
+// A CVT pin in the sheaves (contact tag k). Compliant pins: a compliant normal whose friction
+// acts in the sheave plane, radially (along the contact normal) and circumferentially, bounded by
+// the pin's axial force at this state (its normal force kept for the outputs). Rigid pins: a
+// contact on the running circle (c's gap moved there) with Newton's law and the wedge's friction.
+ns::Contact RigidContactDrive::pinContact(ContactPoint& c, int k) {
+  const Model& m = *model_;
+  const PinSheaveLaw& law = m.pinSheave;
+  ns::Contact p;
+  p.id = contactId(c);
+  p.tag = k;
+  if (rigidPins_) {
+    c.gap += d_.pulleyFreeRadius[c.element] - d_.pulleyRunningRadius[c.element];
+    p.mu = p.muStatic = law.friction / (law.tanWedge * law.cosWedge);
+    p.restitution = law.restitution;
+  } else {
+    p.frictionBound = 0.0;
+    if (c.gap < 0.0) {
+      const PinSheaveForce f = pinSheaveForce(law, m.frictionRegularization, -c.gap, c.vN, c.vT);
+      pinNormal_[k] = f.normal;
+      p.frictionBound = pinFrictionLimit(law, f.axial);
+    }
+  }
+  p.gap = c.gap;
+  ns::SparseColumn& radial = rigidPins_ ? p.wN : p.wT;
+  ns::SparseColumn& circumferential = rigidPins_ ? p.wT : p.wT2;
+  for (auto [dir, col] : {std::pair{c.normal, &radial}, std::pair{c.tangent, &circumferential}}) {
+    double wl[3], wr;
+    wColumn(c, dir, wl, wr);
+    for (int j = 0; j < 3; ++j) col->add(m.linkGen(c.link, j), wl[j]);
+    col->add(m.rotorGen(c.rotor), wr);
+  }
+  return p;
+}
+
 void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, std::vector<ContactPoint>& out) const {
   out.clear();
   for (const ns::ContactForce& cf : f) {
@@ -195,6 +240,11 @@ void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, st
     ContactPoint c = last_[cf.tag];
     c.fN = cf.fN;
     c.fT = cf.fT;
+    if (c.kind == ContactPoint::Kind::PinSheave && !rigidPins_) {  // the law's normal force, two friction directions
+      c.fN = pinNormal_[cf.tag];
+      c.fNFriction = cf.fT;
+      c.fT = cf.fT2;
+    }
     out.push_back(c);
   }
 }
@@ -222,6 +272,7 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
     ms.gapTolerance = s.rigid.gapTolerance;
     ms.recordLcpDirectory = s.rigid.recordLcpDirectory;
     ms.recordLcpCount = s.rigid.recordLcpCount;
+    ms.frictionFacets = s.rigid.frictionFacets;
     ns_ = std::make_unique<ns::MoreauJean>(*sys_, ms);
   } else if (method == "event-driven") {
     ns::EventDrivenSettings es;

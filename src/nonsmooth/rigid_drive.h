@@ -2,6 +2,13 @@
 // complementarity methods, and the adapter that lets the Simulation drive those methods through
 // the Integrator interface. The contact kinematics are the same as for the compliant contacts
 // (contact_kinematics.h): gaps, normals, lever arms and the W columns; only the laws differ.
+// On a CVT the pins' normal force stays the compliant one of their axial stiffness (the paper's
+// elastic bolt) and their friction, radial and circumferential, becomes the constraint; or, with
+// rigid pins (the axial stiffness's limit), a pin is a unilateral contact on its pulley's running
+// circle, closing with Newton's impact law (restitution of the CVT's contact), its friction
+// circumferential with the wedge's coefficient mu / sin(beta): a pressed rigid pin cannot slide
+// radially (moving in would compress it, moving out opens the contact), so the radial friction
+// has no sliding to oppose and is not separable from the normal force.
 #pragma once
 
 #include <memory>
@@ -19,7 +26,8 @@ namespace chaindrive {
 
 class RigidContactDrive : public ns::NonsmoothSystem {
  public:
-  RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints, const HealthLimits& health);
+  RigidContactDrive(std::shared_ptr<const Model> m, const InputSignal& in, bool idealJoints, const HealthLimits& health,
+                    bool rigidPins = false);
   int size() const override { return n_; }
   const std::vector<double>& inverseMass() const override { return minv_; }
   void prescribed(double t, double* v, double* a) const override;
@@ -40,14 +48,17 @@ class RigidContactDrive : public ns::NonsmoothSystem {
 
  private:
   void evaluate(double t, const double* q, const double* v);  // kinematics and smooth forces into d_
+  ns::Contact pinContact(ContactPoint& c, int k);
   std::shared_ptr<const Model> model_;
   const InputSignal& in_;
   bool ideal_;
+  bool rigidPins_;
   HealthLimits health_;
   int n_;
   std::vector<double> minv_, y_, yp_;
   Data d_, dp_;                          // evaluation and perturbed evaluation (wbar)
   std::vector<ContactPoint> last_;       // contact points of the last constraints() call
+  std::vector<double> pinNormal_;        // (last_) a CVT pin's normal force of its law
   mutable InputValues inputs_;
 };
 

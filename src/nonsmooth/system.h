@@ -50,10 +50,18 @@ inline double weightedDot(const SparseColumn& a, const SparseColumn& b, const do
 /// One unilateral contact: g_N >= 0 with Coulomb friction. Relative velocities are
 /// gdot_N = wN . v, gdot_T = wT . v (prescribed DOFs included in v); accelerations
 /// gddot = w . qddot + wbar.
+///
+/// A contact with a compliant normal (frictionBound >= 0) is not a normal constraint: its normal
+/// force is one of the system's smooth forces (a CVT pin pressed between elastic sheaves), and
+/// only its friction is, in the plane of the two directions wT and wT2 (sheave plane: radial and
+/// circumferential), bounded by |F_T| <= frictionBound [N] (Coulomb's mu times that normal force).
 struct Contact {
   long long id = 0;        // stable identity over time
   double gap = 0.0;        // g_N [m]
   SparseColumn wN, wT;     // columns of W_N and W_T
+  SparseColumn wT2;        // compliant normal: the second friction direction (else empty)
+  double frictionBound = -1.0;  // >= 0: a compliant normal, the friction's bound [N]
+  bool compliantNormal() const { return frictionBound >= 0.0; }
   double wbarN = 0.0, wbarT = 0.0;  // acceleration terms (only when requested)
   double mu = 0.0;         // kinetic (sliding) friction coefficient
   double muStatic = 0.0;   // static friction coefficient (>= mu)
@@ -103,7 +111,8 @@ class NonsmoothSystem {
 struct NsStats {
   long long steps = 0;          // time steps (time-stepping) or integrator steps (event-driven)
   long long events = 0;         // event-driven: root events handled
-  long long impacts = 0;        // impact LCPs with at least one closing contact
+  long long impacts = 0;        // impact LCPs with at least one closing contact (time stepping:
+                                // steps in which a contact closes approaching)
   long long lcpSolves = 0;
   long long lcpSizeSum = 0;
   long long lcpSizeMax = 0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "cvt/pin_sheave.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/joint_forces.h"
 
@@ -55,6 +56,8 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
       if (d.nContacts >= static_cast<int>(d.contacts.size())) break;
       d.contacts[d.nContacts++] = c;
       addContactGen(m, c, d.gen.data());
+      // (a CVT pin's compliant normal is not among the smooth forces evaluated here)
+      if (c.kind == ContactPoint::Kind::PinSheave) d.powerDissipated += constrainedPinPower(m, c);
     }
   }
   // ideal joints: the constraint forces, their tension along the links' mean axis

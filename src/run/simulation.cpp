@@ -136,16 +136,18 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
 
 namespace {
 
-// A CVT's pin-sheave contacts (cvt/pin_sheave.h) have a force law only: no complementarity
-// formulation, Jacobian or damping rates yet, so the methods that need one are refused.
+// A CVT's pin-sheave contacts (cvt/pin_sheave.h) have a force law and, for time stepping, the
+// friction as a constraint; no acceleration-level formulation (event driven), Jacobian or
+// damping rates yet, so the methods that need one are refused.
 void refuseOnPulleys(const std::string& fidelity, const std::string& contactMethod, const std::string& method) {
   const std::vector<std::string> explicitMethods = {"fixed-verlet", "fixed-verlet-implicit-joint-damping", "arkode-erk",
                                                     "arkode-erk-fixed"};
   if (fidelity != "link")
     throw std::invalid_argument("fidelity '" + fidelity + "': a CVT has the link fidelity only");
+  if (contactMethod == "time-stepping") return;
   if (contactMethod != "compliant")
-    throw std::invalid_argument("contact method '" + contactMethod + "': a CVT's pin-sheave contacts are compliant "
-                                "only (allowed: compliant)");
+    throw std::invalid_argument("contact method '" + contactMethod + "': a CVT's pins have a compliant normal "
+                                "(allowed: compliant, time-stepping)");
   if (std::find(explicitMethods.begin(), explicitMethods.end(), method) == explicitMethods.end())
     throw std::invalid_argument("integrator '" + method + "' needs the contacts' Jacobian or damping rates, which a "
                                 "CVT's pin-sheave contacts do not give; allowed on a CVT: fixed-verlet, "
@@ -180,7 +182,10 @@ void Simulation::buildLinkModel(const std::string& joints) {
     system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.health);
     integrator_ = makeIntegrator(*system_, options_.integrator);
   } else if (contactMethod_ == "event-driven" || contactMethod_ == "time-stepping") {
-    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.health);
+    if (options_.integrator.rigid.rigidPins && model_->pulleys.empty())
+      throw std::invalid_argument("rigid pins: a chain CVT's option; this drive has no pulleys");
+    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.health,
+                                                 options_.integrator.rigid.rigidPins);
     auto ri = std::make_unique<RigidIntegrator>(rigid_, contactMethod_, options_.integrator);
     rigidIntegrator_ = ri.get();
     integrator_ = std::move(ri);

@@ -121,9 +121,9 @@ class Simulation {
   const ns::NsStats* contactStats() const { return rigidIntegrator_ ? &rigidIntegrator_->contactStats() : nullptr; }
   /// Outputs at the current state (evaluates the dynamics once more; no allocation after the first call).
   const Outputs& outputs();
-  /// The work area outputs() evaluated in (the compliant link model; nullptr otherwise): the
+  /// The work area outputs() evaluated in (the link model; nullptr for the span model): the
   /// contacts behind the outputs, for a scene's own (cvt/cvt_outputs.h).
-  const Data* outputData() const { return system_ ? &system_->data() : nullptr; }
+  const Data* outputData() const { return system_ ? &system_->data() : outData_.get(); }
 
  private:
   std::shared_ptr<const Model> model_;

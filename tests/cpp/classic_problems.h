@@ -105,6 +105,38 @@ class InclineBlock : public NonsmoothSystem {
   std::vector<double> minv_{1.0, 1.0};
 };
 
+/// A puck of unit mass on a table, pressed onto it by a known normal force (a compliant normal:
+/// only the friction is a constraint, bounded by `bound` in the table's plane) and pushed with
+/// force F at angle theta: q = (x, y).
+class PressedPuck : public NonsmoothSystem {
+ public:
+  PressedPuck(double push, double theta, double bound) : push_(push), theta_(theta), bound_(bound) {}
+  int size() const override { return 2; }
+  const std::vector<double>& inverseMass() const override { return minv_; }
+  void forces(double, const double*, const double*, double* h) override {
+    h[0] = push_ * std::cos(theta_);
+    h[1] = push_ * std::sin(theta_);
+  }
+  void constraints(double, const double*, const double*, double, bool, ConstraintSet& out) override {
+    out.clear();
+    Contact c;
+    c.id = 1;
+    c.wT.add(0, 1.0);
+    c.wT2.add(1, 1.0);
+    c.frictionBound = bound_;
+    out.contacts.push_back(c);
+  }
+  double inputPower(double t, const double* q, const double* v) override {
+    double h[2];
+    forces(t, q, v, h);
+    return h[0] * v[0] + h[1] * v[1];
+  }
+
+ private:
+  double push_, theta_, bound_;
+  std::vector<double> minv_{1.0, 1.0};
+};
+
 /// Uniform rod of half-length l, its lower end on the ground: q = (x, y, theta) of the centre,
 /// theta from the horizontal, the contact end at (x - l cos th, y - l sin th).
 class PainleveRod : public NonsmoothSystem {

@@ -48,6 +48,8 @@ TEST(CvtDescription, ProblemsNameTheFieldAndTheRange) {
   EXPECT_NE(missing.find("chain.pin"), std::string::npos) << missing;
   const std::string unknown = problemsOf(defaultWith("/contact/frictionn", 0.1));
   EXPECT_NE(unknown.find("contact.frictionn"), std::string::npos) << unknown;
+  const std::string restitution = problemsOf(defaultWith("/contact/restitution", 1.5));
+  EXPECT_NE(restitution.find("contact.restitution"), std::string::npos) << restitution;
   const std::string ideal = problemsOf(defaultWith("/chain/joint/model", "ideal"));
   EXPECT_NE(ideal.find("chain.joint.model"), std::string::npos) << ideal;
 }

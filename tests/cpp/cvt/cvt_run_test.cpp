@@ -9,6 +9,7 @@
 
 #include "allocation_counter.h"
 #include "cvt/cvt_assembly.h"
+#include "cvt/pin_sheave.h"
 #include "run/simulation.h"
 
 using namespace chaindrive;
@@ -80,9 +81,80 @@ TEST(CvtRun, MethodsWithoutPinSheaveJacobiansAreRefused) {
       EXPECT_NE(std::string(e.what()).find("allowed on a CVT"), std::string::npos) << e.what();
     }
   }
-  SimulationOptions so;
-  so.contactMethod = "time-stepping";
-  EXPECT_THROW(Simulation(model, so, std::make_unique<HeldInputs>(*model)), std::invalid_argument);
+  for (const char* contactMethod : {"event-driven", "penalty"}) {
+    SimulationOptions so;
+    so.contactMethod = contactMethod;
+    try {
+      Simulation sim(model, so, std::make_unique<HeldInputs>(*model));
+      FAIL() << contactMethod << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("allowed: compliant, time-stepping"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Time stepping with the pins' friction as complementarity (Moreau-Jean, Lemke): a short loaded
+// run from the nominal state keeps every pressed pin's friction within its Coulomb disc (the
+// polygon lies inside it), loads no pin of the strands, turns the driven pulley forwards, and
+// repeats to the bit.
+TEST(CvtRun, TimeSteppingKeepsThePinsFrictionInTheirCone) {
+  const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  CvtRunOptions opt;
+  opt.contactMethod = "time-stepping";
+  opt.integrator.fixed.step = 5e-6;
+  opt.integrator.rigid.frictionFacets = 4;
+  opt.loadTorque = 100.0;
+  opt.duration = 0.002;
+  opt.outputStep = 1e-4;
+  const CvtRunResult a = runCvt(model, opt), b = runCvt(model, opt);
+  ASSERT_TRUE(a.contactStats.has_value());
+  EXPECT_EQ(a.contactStats->lcpSolves, a.steps);
+  const PinSheaveLaw& law = model->pinSheave;
+  int pressed = 0;
+  for (std::size_t k = 0; k < a.samples.size(); ++k) {
+    const CvtOutputs& c = a.samples[k].cvt;
+    const double friction = std::hypot(c.pinRadialFriction, c.pinCircumferentialFriction);
+    EXPECT_LE(friction, pinFrictionLimit(law, c.pinAxialForce) * (1.0 + 1e-9) + 1e-9) << a.samples[k].time;
+    if (c.pinAxialForce == 0.0) {
+      EXPECT_EQ(friction, 0.0) << a.samples[k].time;
+    }
+    pressed += c.pinAxialForce > 0.0 ? 1 : 0;
+    EXPECT_GT(c.drivenSpeed, 0.0);
+    EXPECT_EQ(c.drivenSpeed, b.samples[k].cvt.drivenSpeed);
+    EXPECT_EQ(c.tightStrandForce, b.samples[k].cvt.tightStrandForce);
+  }
+  EXPECT_GT(pressed, 0);
+}
+
+// Time stepping with rigid pins: the pins close on the running circles with Newton impacts (the
+// default CVT's restitution 0), press the sheaves with a normal force and no radial friction, and
+// their circumferential friction stays within the wedge's mu / sin(beta) of it.
+TEST(CvtRun, RigidPinsCloseWithImpactsAndTheWedgesFriction) {
+  const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
+  CvtRunOptions opt;
+  opt.contactMethod = "time-stepping";
+  opt.integrator.rigid.rigidPins = true;
+  opt.integrator.fixed.step = 5e-6;
+  opt.loadTorque = 100.0;
+  opt.duration = 0.004;
+  opt.outputStep = 1e-4;
+  const CvtRunResult r = runCvt(model, opt);
+  ASSERT_TRUE(r.contactStats.has_value());
+  EXPECT_GT(r.contactStats->impacts, 0);
+  const PinSheaveLaw& law = model->pinSheave;
+  const double wedgeFriction = law.friction / (law.tanWedge * law.cosWedge);
+  int pressed = 0;
+  for (const CvtSample& s : r.samples) {
+    const CvtOutputs& c = s.cvt;
+    EXPECT_GE(c.pinNormalForce, 0.0);
+    EXPECT_EQ(c.pinRadialFriction, 0.0);
+    EXPECT_LE(std::fabs(c.pinCircumferentialFriction), wedgeFriction * c.pinNormalForce * (1.0 + 1e-9) + 1e-9);
+    pressed += c.pinNormalForce > 0.0 ? 1 : 0;
+    if (s.time > 0.0) {  // (the forces are a step's)
+      EXPECT_GT(c.pinsInContact[0] + c.pinsInContact[1], 20.0) << s.time;  // the wraps' pins
+    }
+  }
+  EXPECT_GT(pressed, 0);
 }
 
 // The ratio input moves the sheaves: the chain climbs on the driving pulley and sinks into the

@@ -43,7 +43,8 @@ TEST(PinSheave, FrictionOpposesSlidingInBothDirectionsWithinTheCone) {
   EXPECT_NEAR(f.frictionRadial / f.frictionCircumferential, vr / vt, 1e-12);  // along the sliding
   EXPECT_GT(f.frictionRadial, 0.0);
   EXPECT_LT(f.frictionCircumferential, 0.0);
-  EXPECT_GT(f.power, 0.0);
+  EXPECT_GT(f.frictionPower, 0.0);
+  EXPECT_GT(f.dampingPower, 0.0);  // (compressing: the damping works against it)
 }
 
 TEST(PinSheave, SeparatingPinIsNotPulled) {

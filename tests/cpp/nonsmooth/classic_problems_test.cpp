@@ -110,6 +110,46 @@ TEST(MoreauJean, BlockOnInclineSticksIffTanAlphaBelowMu) {
   }
 }
 
+// A compliant normal's friction (a puck pressed with a known force, formulations.h
+// PolygonFriction): along a vertex of the friction polygon (the radial and circumferential
+// directions of a CVT pin) its bound is exact, so the puck sticks below it and slides at
+// (F - bound) / m above it, straight on; between two vertices the polygon's bound is
+// cos(pi / d) of the disc's: a push of 0.95 of the disc's bound at 22.5 deg moves the puck with 8
+// facets (0.924) and not with 16 (0.981). The friction's work is the energy lost.
+TEST(MoreauJean, PressedPuckSticksWithinTheFrictionPolygon) {
+  const double bound = 2.0, pi = 3.14159265358979323846;
+  struct Case {
+    double push, thetaDeg;
+    int facets;
+    bool slides;
+  };
+  for (const Case& c : {Case{0.9 * bound, 0.0, 8, false}, Case{1.5 * bound, 0.0, 8, true},
+                        Case{0.9 * bound, 90.0, 8, false}, Case{1.5 * bound, 90.0, 4, true},
+                        Case{0.95 * bound, 22.5, 8, true}, Case{0.95 * bound, 22.5, 16, false}}) {
+    const double theta = c.thetaDeg * pi / 180.0;
+    PressedPuck puck(c.push, theta, bound);
+    MoreauJeanSettings s;
+    s.step = 1e-3;
+    s.frictionFacets = c.facets;
+    MoreauJean mj(puck, s);
+    const double q0[2] = {0.0, 0.0}, v0[2] = {0.0, 0.0};
+    mj.reset(0.0, q0, v0);
+    mj.advance(1.0);
+    const double speed = std::hypot(mj.v()[0], mj.v()[1]);
+    if (!c.slides) {
+      EXPECT_LT(speed, 1e-12) << c.thetaDeg << " deg, " << c.facets << " facets";  // (the LCP's rounding)
+      continue;
+    }
+    EXPECT_GT(speed, 1e-3) << c.thetaDeg << " deg, " << c.facets << " facets";
+    if (c.thetaDeg == 0.0 || c.thetaDeg == 90.0) {  // along a vertex: straight on at (F - bound) / m
+      EXPECT_NEAR(speed, c.push - bound, 1e-9);
+      EXPECT_NEAR(mj.v()[0] * std::sin(theta) - mj.v()[1] * std::cos(theta), 0.0, 1e-12);
+    }
+    const double kinetic = 0.5 * speed * speed;
+    EXPECT_NEAR(mj.inputWork() - mj.dissipated(), kinetic, 1e-9 * mj.inputWork());
+  }
+}
+
 // Stick-slip oscillator on a belt (mu_s > mu_k): period T = 2 D / v_b + 2 (pi - phi) / w. Time
 // stepping uses the static coefficient for contacts that stuck in the previous step; the period
 // is measured between onsets of sticking, to 0.1 % (each of the four transitions of a period is

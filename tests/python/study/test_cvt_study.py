@@ -34,7 +34,12 @@ def test_quick_study_gives_points_failures_and_the_section(tmp_path):
     assert "blow-up" in by[("fixed-verlet", 1e-5)]["failure"]  # too long a step: a named failure
     assert by[("fixed-verlet", 1e-6)]["consistent"]             # (the quick reference itself)
     assert by[("arkode-erk", 1e-5)]["cpuPerRevolution"] > 0
+    stepping = by[("time-stepping", 5e-6)]               # (from the handover state: Coulomb's friction)
+    assert stepping["facets"] == 4 and stepping["lcp"]["lcpSolves"] > 0 and stepping["cpuPerRevolution"] > 0
+    rigid = by[("time-stepping-rigid-pins", 5e-6)]             # (the pins closing with Newton impacts)
+    assert rigid["lcp"]["impacts"] > 0 and rigid["cpuPerRevolution"] > 0
     cvt.chart(tmp_path / "wp_cvt.png", r)
     text = cvt.section(r)
     assert text.startswith("## The chain CVT") and "energy balance" in text and "failed" in text
+    assert "time-stepping (4 facets)" in text and "The friction law" in text
     assert (tmp_path / "wp_cvt.png").stat().st_size > 1000
