@@ -115,25 +115,21 @@ void ConstraintSolver::buildForceMap(const std::vector<ContactRow>& rows) {
   int nz = 0;
   for (const ContactRow& r : rows) nz += variables(r);
   T_.setZero(2 * nc, nz);
-  int o = 0;
-  for (int c = 0; c < nc; ++c) {
+  for (int c = 0, o = 0; c < nc; o += variables(rows[c]), ++c) {
     const ContactRow& r = rows[c];
     if (r.kind == RowKind::PolygonFriction) {
       for (int j = 0; j < r.facets; ++j) {
         T_(2 * c, o + j) = facetCos(j, r.facets);
         T_(2 * c + 1, o + j) = facetSin(j, r.facets);
       }
-      o += r.facets + 1;
       continue;
     }
     T_(2 * c, o) = 1.0;
     if (r.kind == RowKind::Friction) {
       T_(2 * c + 1, o) = -r.mu;
       T_(2 * c + 1, o + 1) = 1.0;
-      o += 3;
-    } else {
-      if (r.kind == RowKind::SlidingFolded) T_(2 * c + 1, o) = -r.mu * r.slideSign;
-      o += 1;
+    } else if (r.kind == RowKind::SlidingFolded) {
+      T_(2 * c + 1, o) = -r.mu * r.slideSign;
     }
   }
   z_.resize(nz);
@@ -180,12 +176,10 @@ void ConstraintSolver::assembleLcp(const std::vector<ContactRow>& rows) {
   M_.setZero(nz, nz);
   q_.setZero(nz);
   DT_.noalias() = D_ * T_;
-  int o = 0;
-  for (int c = 0; c < nc; ++c) {
+  for (int c = 0, o = 0; c < nc; o += variables(rows[c]), ++c) {
     const ContactRow& r = rows[c];
     if (r.kind == RowKind::PolygonFriction) {
       polygonRows(r, c, o);
-      o += r.facets + 1;
       continue;
     }
     M_.row(o) = DT_.row(2 * c);
@@ -196,9 +190,6 @@ void ConstraintSolver::assembleLcp(const std::vector<ContactRow>& rows) {
       q_[o + 1] = b_[2 * c + 1];
       M_(o + 2, o) = 2.0 * r.mu;
       M_(o + 2, o + 1) = -1.0;
-      o += 3;
-    } else {
-      o += 1;
     }
   }
 }
@@ -222,8 +213,7 @@ void ConstraintSolver::polygonRows(const ContactRow& r, int c, int o) {
 void ConstraintSolver::contactForces(const std::vector<ContactRow>& rows) {
   const int nc = static_cast<int>(rows.size());
   F_ = T_ * z_;
-  int o = 0;
-  for (int c = 0; c < nc; ++c) {
+  for (int c = 0, o = 0; c < nc; o += variables(rows[c]), ++c) {
     const ContactRow& r = rows[c];
     if (r.kind == RowKind::PolygonFriction) {
       sol_.fT[c] = F_[2 * c];
@@ -236,7 +226,6 @@ void ConstraintSolver::contactForces(const std::vector<ContactRow>& rows) {
       if (r.kind == RowKind::Friction)
         sol_.sticking[c] = std::fabs(sol_.fT[c]) < r.mu * sol_.fN[c] * (1.0 - 1e-9) ? 1 : 0;
     }
-    o += variables(r);
   }
 }
 

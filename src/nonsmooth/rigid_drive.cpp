@@ -143,7 +143,6 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
     }
     plus = &cp;
   }
-  pinNormal_.assign(last_.size(), 0.0);
   for (std::size_t k = 0; k < last_.size(); ++k) {
     ContactPoint& c = last_[k];
     if (c.kind == ContactPoint::Kind::PinSheave) {
@@ -201,7 +200,7 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
 
 // A CVT pin in the sheaves (contact tag k). Compliant pins: a compliant normal whose friction
 // acts in the sheave plane, radially (along the contact normal) and circumferentially, bounded by
-// the pin's axial force at this state (its normal force kept for the outputs). Rigid pins: a
+// the pin's axial force at this state. Rigid pins: a
 // contact on the running circle (c's gap moved there) with Newton's law and the wedge's friction.
 ns::Contact RigidContactDrive::pinContact(ContactPoint& c, int k) {
   const Model& m = *model_;
@@ -215,11 +214,8 @@ ns::Contact RigidContactDrive::pinContact(ContactPoint& c, int k) {
     p.restitution = law.restitution;
   } else {
     p.frictionBound = 0.0;
-    if (c.gap < 0.0) {
-      const PinSheaveForce f = pinSheaveForce(law, m.frictionRegularization, -c.gap, c.vN, c.vT);
-      pinNormal_[k] = f.normal;
-      p.frictionBound = pinFrictionLimit(law, f.axial);
-    }
+    if (c.gap < 0.0)
+      p.frictionBound = pinFrictionLimit(law, pinSheaveForce(law, m.frictionRegularization, -c.gap, c.vN, c.vT).axial);
   }
   p.gap = c.gap;
   ns::SparseColumn& radial = rigidPins_ ? p.wN : p.wT;
@@ -241,7 +237,8 @@ void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, st
     c.fN = cf.fN;
     c.fT = cf.fT;
     if (c.kind == ContactPoint::Kind::PinSheave && !rigidPins_) {  // the law's normal force, two friction directions
-      c.fN = pinNormal_[cf.tag];
+      const Model& m = *model_;
+      c.fN = c.gap < 0.0 ? pinSheaveForce(m.pinSheave, m.frictionRegularization, -c.gap, c.vN, c.vT).normal : 0.0;
       c.fNFriction = cf.fT;
       c.fT = cf.fT2;
     }

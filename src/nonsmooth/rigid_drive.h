@@ -58,7 +58,6 @@ class RigidContactDrive : public ns::NonsmoothSystem {
   std::vector<double> minv_, y_, yp_;
   Data d_, dp_;                          // evaluation and perturbed evaluation (wbar)
   std::vector<ContactPoint> last_;       // contact points of the last constraints() call
-  std::vector<double> pinNormal_;        // (last_) a CVT pin's normal force of its law
   mutable InputValues inputs_;
 };
 
