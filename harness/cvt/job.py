@@ -25,7 +25,7 @@ import numpy as np
 from .. import cycle_stats, paths
 from . import plots
 
-DEFAULT_RPM = 2000.0        # driving-pulley speed of the cost figure
+DEFAULT_RPM = 2000.0        # driving-pulley speed of the cost figure (CPU s per chain revolution)
 DEFAULT_LOAD = 80.0         # [N m] about half the default CVT's torque capacity (2 mu F r / cos beta = 169 N m)
 DEFAULT_REVOLUTIONS = 8     # counted chain revolutions
 # discarded: the start transient. From the nominal state the chain takes up the load within a

@@ -13,7 +13,7 @@ within its engineering tolerance (TOLERANCES: forces 2 %, slip and power loss 5 
 stationary state hold: (F_tight - F_slack) r2 within 2 % of the driven torque, the energy balance
 within 1 % of the dissipated energy. A run that fails is a failure marker with the solver's
 message (blow-up: a joint stretched beyond a quarter pitch). Cost: CPU seconds per chain revolution
-(the issue's figure; the paper's stationary case took about 8 hours).
+(the goal: under one CPU minute; the paper's stationary case took about 8 hours).
 
 Time stepping (Moreau-Jean, Lemke per step: the compliant pins' friction as complementarity on a
 linearized friction cone of 4 or 8 facets per pin, or rigid pins closing with Newton impacts;

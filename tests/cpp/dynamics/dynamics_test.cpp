@@ -94,7 +94,7 @@ TEST(Energy, AdaptiveDriftShrinksWithTolerance) {
 // Static tension split (DOMAIN reference 3): at low speed with constant camshaft torques the
 // mean tight-span force minus the mean slack-span force equals sum(M_cam) / R_cam. The probes sit
 // next to the camshaft sprockets (tight: after the intake cam, slack: before the exhaust cam), so
-// no guide friction acts between them. Tolerance 3 % (issue); the polygonal action changes the
+// no guide friction acts between them. Tolerance 3 %; the polygonal action changes the
 // effective radius by less than 1 - cos(pi/42) = 0.3 %.
 TEST(Balance, TightMinusSlackEqualsCamTorquesOverPitchRadius) {
   auto m = std::make_shared<const Model>(assemble(defaultDriveDescription()));

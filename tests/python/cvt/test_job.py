@@ -19,7 +19,7 @@ def test_short_cvt_job_reports_statistics_checks_and_plots(tmp_path):
     s = json.loads((tmp_path / "cvt_summary.json").read_text())
     stats, checks = s["statistics"], s["checks"]
     assert stats["slip"]["cycles"] == 2
-    # the stationary checks of the issue: torque balance within 2 %, energy within 1 %
+    # the stationary checks: torque balance within 2 %, energy within 1 %
     assert abs(checks["torqueBalanceError"]) < 0.02
     assert abs(checks["energyBalanceError"]) < 0.01
     # the load held: the chain's torque on the driven pulley is the load's, the tight strand tighter
