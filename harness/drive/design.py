@@ -91,18 +91,9 @@ def face_range(prev_c, prev_s, c, face_r, next_c, next_s, margin):
     return lo - margin / face_r, hi + margin / face_r
 
 
-def build(cam_height):
-    rc, rcam = pitch_radius(Z_CRANK), pitch_radius(Z_CAM)
-    crank = (0.0, 0.0)
-    exh = (-CAM_SPACING / 2.0, cam_height)
-    intk = (CAM_SPACING / 2.0, cam_height)
-    # clockwise running: signed radii are negative for sprockets
-    l1, l2 = common_tangent(crank, -rc, exh, -rcam)   # slack span (left, running upwards)
-    r1, r2 = common_tangent(intk, -rcam, crank, -rc)  # tight span (right, running downwards)
-    tg_c, tg_u, tg_n = guide_on_span(l1, l2, TG_AT, TG_FACE_R, TG_DEFLECT, +1.0)
-    g_c, _, _ = guide_on_span(r1, r2, G_AT, G_FACE_R, G_DEFLECT, +1.0)
-    tg_a0, tg_a1 = face_range(crank, -rc, tg_c, TG_FACE_R, exh, -rcam, TG_MARGIN)
-    g_a0, g_a1 = face_range(intk, -rcam, g_c, G_FACE_R, crank, -rc, G_MARGIN)
+def tension_guide_mounts(tg_c, tg_u, tg_n, tg_a0, tg_a1):
+    """The tension guide's pivot and the tensioner's pad, housing and direction, from the guide's
+    face (centre tg_c, angles tg_a0..tg_a1) and its span's direction tg_u and normal tg_n."""
     # tension guide pivot: 25 mm before the lower end of the face, 12 mm behind it
     e0 = (tg_c[0] + TG_FACE_R * math.cos(tg_a0), tg_c[1] + TG_FACE_R * math.sin(tg_a0))
     e1 = (tg_c[0] + TG_FACE_R * math.cos(tg_a1), tg_c[1] + TG_FACE_R * math.sin(tg_a1))
@@ -116,7 +107,22 @@ def build(cam_height):
     on_face = (tg_c[0] + TG_FACE_R * dx / r, tg_c[1] + TG_FACE_R * dy / r)
     pad = (on_face[0] + 0.010 * tg_n[0], on_face[1] + 0.010 * tg_n[1])
     housing = (pad[0] + 0.030 * tg_n[0], pad[1] + 0.030 * tg_n[1])
-    direction = (-tg_n[0], -tg_n[1])
+    return pivot, pad, housing, (-tg_n[0], -tg_n[1])
+
+
+def build(cam_height):
+    rc, rcam = pitch_radius(Z_CRANK), pitch_radius(Z_CAM)
+    crank = (0.0, 0.0)
+    exh = (-CAM_SPACING / 2.0, cam_height)
+    intk = (CAM_SPACING / 2.0, cam_height)
+    # clockwise running: signed radii are negative for sprockets
+    l1, l2 = common_tangent(crank, -rc, exh, -rcam)   # slack span (left, running upwards)
+    r1, r2 = common_tangent(intk, -rcam, crank, -rc)  # tight span (right, running downwards)
+    tg_c, tg_u, tg_n = guide_on_span(l1, l2, TG_AT, TG_FACE_R, TG_DEFLECT, +1.0)
+    g_c, _, _ = guide_on_span(r1, r2, G_AT, G_FACE_R, G_DEFLECT, +1.0)
+    tg_a0, tg_a1 = face_range(crank, -rc, tg_c, TG_FACE_R, exh, -rcam, TG_MARGIN)
+    g_a0, g_a1 = face_range(intk, -rcam, g_c, G_FACE_R, crank, -rc, G_MARGIN)
+    pivot, pad, housing, direction = tension_guide_mounts(tg_c, tg_u, tg_n, tg_a0, tg_a1)
 
     r6 = lambda v: round(v, 9)
     deg = lambda a: round(math.degrees(a), 6)

@@ -221,8 +221,18 @@ void LemkeSolver::pivot(int n, int r) {
 // step of iterative refinement. Returns false if the basis is numerically singular.
 bool LemkeSolver::refactor(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
                            int n) {
+  basisMatrix(M, n);
+  if (!invertBasis(n)) return false;
+  basicValues(M, q, n);
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(b_(i))) return false;
+  return true;
+}
+
+// The basis matrix B into work_: the column of each basic variable (w_i: e_i, z_j: -M_.j,
+// z0: -1).
+void LemkeSolver::basisMatrix(const Eigen::Ref<const Eigen::MatrixXd>& M, int n) {
   auto W = work_.topLeftCorner(n, n);
-  auto Bi = binv_.topLeftCorner(n, n);
   for (int j = 0; j < n; ++j) {
     const int var = basis_[static_cast<std::size_t>(j)];
     if (var < n) {
@@ -234,6 +244,13 @@ bool LemkeSolver::refactor(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eig
       W.col(j).setConstant(-1.0);
     }
   }
+}
+
+// B^-1 into binv_ by Gauss-Jordan with partial pivoting on work_ (overwritten); false if a pivot
+// is within rounding of zero (or NaN).
+bool LemkeSolver::invertBasis(int n) {
+  auto W = work_.topLeftCorner(n, n);
+  auto Bi = binv_.topLeftCorner(n, n);
   const double scale = W.cwiseAbs().maxCoeff();
   const double tiny = static_cast<double>(n) * std::numeric_limits<double>::epsilon() * scale;
   Bi.setIdentity();
@@ -259,7 +276,13 @@ bool LemkeSolver::refactor(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eig
       if (s != 0.0) Bi.col(c).noalias() -= s * tmp_.head(n);
     }
   }
-  // b = B^-1 q, then b += B^-1 (q - B b).
+  return true;
+}
+
+// b = B^-1 q, then b += B^-1 (q - B b): one step of iterative refinement.
+void LemkeSolver::basicValues(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+                              int n) {
+  auto Bi = binv_.topLeftCorner(n, n);
   for (int pass = 0; pass < 2; ++pass) {
     if (pass == 0) {
       tmp_.head(n) = q;
@@ -279,9 +302,6 @@ bool LemkeSolver::refactor(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eig
       if (t != 0.0) b_.head(n).noalias() += t * Bi.col(j);
     }
   }
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(b_(i))) return false;
-  return true;
 }
 
 void LemkeSolver::extractZ(int n, Eigen::Ref<Eigen::VectorXd> z) const {

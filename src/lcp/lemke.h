@@ -129,6 +129,9 @@ class LemkeSolver {
   int ratioTest(int n, double qNorm, double colNorm);
   void pivot(int n, int r);
   bool refactor(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q, int n);
+  void basisMatrix(const Eigen::Ref<const Eigen::MatrixXd>& M, int n);
+  bool invertBasis(int n);
+  void basicValues(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q, int n);
   void extractZ(int n, Eigen::Ref<Eigen::VectorXd> z) const;
 
   int capacity_ = 0;

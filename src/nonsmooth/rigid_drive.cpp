@@ -121,79 +121,88 @@ void RigidContactDrive::constraints(double t, const double* q, const double* v, 
   evaluateKinematics(m, d_, y_.data());
   detectContacts(m, d_, margin);
   last_.assign(d_.contacts.begin(), d_.contacts.begin() + d_.nContacts);
-  // acceleration terms by central differences of gdot along the motion (q +- eps v, t +- eps),
-  // at fixed v and prescribed velocities: gddot = W qddot + wbar
-  const double eps = 1e-7;
-  std::vector<ContactPoint>* plus = nullptr;
-  std::vector<ContactPoint> cp, cm;
-  if (accelerations) {
-    for (int sgn : {1, -1}) {
-      for (int i = 0; i < m.nStates; ++i) yp_[i] = y_[i];
-      for (int i = 0; i < m.chain.links; ++i)
-        for (int k = 0; k < 3; ++k) yp_[m.linkState(i, k)] += sgn * eps * y_[m.linkState(i, 3 + k)];
-      // prescribed rotors turn on at their rate at t (their acceleration is in W qddot)
-      dp_.inputs = d_.inputs;
-      for (const RotorModel& r : m.rotors)
-        yp_[r.stateAngle] += sgn * eps * (r.prescribed ? m.sense * d_.inputs.crankSpeed : y_[r.stateRate]);
-      evaluateKinematics(m, dp_, yp_.data());
-      auto& dst = sgn > 0 ? cp : cm;
-      dst.resize(last_.size());
-      for (std::size_t k = 0; k < last_.size(); ++k)
-        if (!sameContact(m, last_[k], dp_, 1.0, dst[k])) dst[k] = last_[k];
-    }
-    plus = &cp;
-  }
+  if (accelerations)
+    for (int side = 0; side < 2; ++side) contactsAlongTheMotion(side == 0 ? 1 : -1, probes_[side]);
   for (std::size_t k = 0; k < last_.size(); ++k) {
     ContactPoint& c = last_[k];
-    if (c.kind == ContactPoint::Kind::PinSheave) {
+    if (c.kind == ContactPoint::Kind::PinSheave)
       out.contacts.push_back(pinContact(c, static_cast<int>(k)));
-      continue;
-    }
-    const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
-    ns::Contact k2;
-    k2.id = contactId(c);
-    k2.gap = c.gap;
-    k2.tag = static_cast<int>(k);
-    double wl[3], wr;
-    wColumn(c, c.normal, wl, wr);
-    for (int j = 0; j < 3; ++j) k2.wN.add(m.linkGen(c.link, j), wl[j]);
-    if (c.rotor >= 0) k2.wN.add(m.rotorGen(c.rotor), wr);
-    wColumn(c, c.tangent, wl, wr);
-    for (int j = 0; j < 3; ++j) k2.wT.add(m.linkGen(c.link, j), wl[j]);
-    if (c.rotor >= 0) k2.wT.add(m.rotorGen(c.rotor), wr);
-    k2.mu = k2.muStatic = law.friction;
-    k2.restitution = law.restitution;
-    if (plus) {
-      // wbar = d/dt (W(q)^T v) at fixed v: the relative velocities of the same contact pair at
-      // the states moved forward and backward along the motion
-      const ContactPoint& a = cp[k];
-      const ContactPoint& b = cm[k];
-      k2.wbarN = (a.vN - b.vN) / (2.0 * eps);
-      k2.wbarT = (a.vT - b.vT) / (2.0 * eps);
-    }
-    out.contacts.push_back(k2);
+    else
+      out.contacts.push_back(rigidContact(c, static_cast<int>(k), accelerations));
   }
-  if (ideal_) {
-    // journal bearings replaced by ideal joints: front pin of link j = rear pin of link j+1
-    const int n = m.chain.links;
-    const double hp = 0.5 * m.chain.pitch;
-    for (int j = 0; j < n; ++j) {
-      const int k = j + 1 == n ? 0 : j + 1;
-      const LinkKin& a = d_.links[j];
-      const LinkKin& b = d_.links[k];
-      const Vec2 dpos = a.front - b.rear;
-      const Vec2 pa = hp * perp(a.e), pb = hp * perp(b.e);
-      const Vec2 wbar = -hp * (a.w * a.w * a.e + b.w * b.w * b.e);
-      for (int axis = 0; axis < 2; ++axis) {
-        ns::Bilateral bl;
-        bl.g = axis == 0 ? dpos.x : dpos.y;
-        bl.w.add(m.linkGen(j, axis), 1.0);
-        bl.w.add(m.linkGen(j, Model::kGamma), axis == 0 ? pa.x : pa.y);
-        bl.w.add(m.linkGen(k, axis), -1.0);
-        bl.w.add(m.linkGen(k, Model::kGamma), axis == 0 ? pb.x : pb.y);
-        bl.wbar = accelerations ? (axis == 0 ? wbar.x : wbar.y) : 0.0;
-        out.bilateral.push_back(bl);
-      }
+  if (ideal_) idealJointConstraints(accelerations, out);
+}
+
+// The contacts of last_ re-evaluated at the state moved by sgn kProbeStep along the motion
+// (q +- eps v, t +- eps, at fixed v and prescribed velocities): their relative velocities there
+// give the acceleration terms by central differences, gddot = W qddot + wbar.
+void RigidContactDrive::contactsAlongTheMotion(int sgn, std::vector<ContactPoint>& dst) {
+  const Model& m = *model_;
+  const double eps = kProbeStep;
+  for (int i = 0; i < m.nStates; ++i) yp_[i] = y_[i];
+  for (int i = 0; i < m.chain.links; ++i)
+    for (int k = 0; k < 3; ++k) yp_[m.linkState(i, k)] += sgn * eps * y_[m.linkState(i, 3 + k)];
+  // prescribed rotors turn on at their rate at t (their acceleration is in W qddot)
+  dp_.inputs = d_.inputs;
+  for (const RotorModel& r : m.rotors)
+    yp_[r.stateAngle] += sgn * eps * (r.prescribed ? m.sense * d_.inputs.crankSpeed : y_[r.stateRate]);
+  evaluateKinematics(m, dp_, yp_.data());
+  dst.resize(last_.size());
+  for (std::size_t k = 0; k < last_.size(); ++k)
+    if (!sameContact(m, last_[k], dp_, 1.0, dst[k])) dst[k] = last_[k];
+}
+
+// A roller-sprocket or plate-guide contact (tag k) with Newton's impact law and Coulomb friction;
+// with the acceleration terms from the probes along the motion.
+ns::Contact RigidContactDrive::rigidContact(const ContactPoint& c, int k, bool accelerations) const {
+  const Model& m = *model_;
+  const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
+  ns::Contact out;
+  out.id = contactId(c);
+  out.gap = c.gap;
+  out.tag = k;
+  double wl[3], wr;
+  wColumn(c, c.normal, wl, wr);
+  for (int j = 0; j < 3; ++j) out.wN.add(m.linkGen(c.link, j), wl[j]);
+  if (c.rotor >= 0) out.wN.add(m.rotorGen(c.rotor), wr);
+  wColumn(c, c.tangent, wl, wr);
+  for (int j = 0; j < 3; ++j) out.wT.add(m.linkGen(c.link, j), wl[j]);
+  if (c.rotor >= 0) out.wT.add(m.rotorGen(c.rotor), wr);
+  out.mu = out.muStatic = law.friction;
+  out.restitution = law.restitution;
+  if (accelerations) {
+    // wbar = d/dt (W(q)^T v) at fixed v: the relative velocities of the same contact pair at
+    // the states moved forward and backward along the motion
+    const ContactPoint& a = probes_[0][k];
+    const ContactPoint& b = probes_[1][k];
+    out.wbarN = (a.vN - b.vN) / (2.0 * kProbeStep);
+    out.wbarT = (a.vT - b.vT) / (2.0 * kProbeStep);
+  }
+  return out;
+}
+
+// Journal bearings replaced by ideal joints: the front pin of link j is the rear pin of link j+1,
+// two bilateral constraints per joint.
+void RigidContactDrive::idealJointConstraints(bool accelerations, ns::ConstraintSet& out) const {
+  const Model& m = *model_;
+  const int n = m.chain.links;
+  const double hp = 0.5 * m.chain.pitch;
+  for (int j = 0; j < n; ++j) {
+    const int k = j + 1 == n ? 0 : j + 1;
+    const LinkKin& a = d_.links[j];
+    const LinkKin& b = d_.links[k];
+    const Vec2 dpos = a.front - b.rear;
+    const Vec2 pa = hp * perp(a.e), pb = hp * perp(b.e);
+    const Vec2 wbar = -hp * (a.w * a.w * a.e + b.w * b.w * b.e);
+    for (int axis = 0; axis < 2; ++axis) {
+      ns::Bilateral bl;
+      bl.g = axis == 0 ? dpos.x : dpos.y;
+      bl.w.add(m.linkGen(j, axis), 1.0);
+      bl.w.add(m.linkGen(j, Model::kGamma), axis == 0 ? pa.x : pa.y);
+      bl.w.add(m.linkGen(k, axis), -1.0);
+      bl.w.add(m.linkGen(k, Model::kGamma), axis == 0 ? pb.x : pb.y);
+      bl.wbar = accelerations ? (axis == 0 ? wbar.x : wbar.y) : 0.0;
+      out.bilateral.push_back(bl);
     }
   }
 }

@@ -49,6 +49,10 @@ class RigidContactDrive : public ns::NonsmoothSystem {
  private:
   void evaluate(double t, const double* q, const double* v);  // kinematics and smooth forces into d_
   ns::Contact pinContact(ContactPoint& c, int k);
+  ns::Contact rigidContact(const ContactPoint& c, int k, bool accelerations) const;
+  void idealJointConstraints(bool accelerations, ns::ConstraintSet& out) const;
+  void contactsAlongTheMotion(int sgn, std::vector<ContactPoint>& dst);
+  static constexpr double kProbeStep = 1e-7;  // the probes' time step along the motion (wbar)
   std::shared_ptr<const Model> model_;
   const InputSignal& in_;
   bool ideal_;
@@ -58,6 +62,7 @@ class RigidContactDrive : public ns::NonsmoothSystem {
   std::vector<double> minv_, y_, yp_;
   Data d_, dp_;                          // evaluation and perturbed evaluation (wbar)
   std::vector<ContactPoint> last_;       // contact points of the last constraints() call
+  std::vector<ContactPoint> probes_[2];  // last_ moved forward and backward along the motion (wbar)
   mutable InputValues inputs_;
 };
 

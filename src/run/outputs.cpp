@@ -39,6 +39,50 @@ void finishRotorOutputs(const Model& m, const std::vector<double>& angle, const 
   out.crankTorque = m.drivenRotor >= 0 ? out.rotorTorque[m.drivenRotor] : 0.0;
 }
 
+namespace {
+
+// Rigid contacts and ideal joints: the forces of the method's last step in place of a force law.
+void carryRigidForces(const Model& m, const RigidForces& rigid, Data& d) {
+  if (rigid.contacts) {
+    d.nContacts = 0;
+    for (const ContactPoint& c : *rigid.contacts) {
+      if (d.nContacts >= static_cast<int>(d.contacts.size())) break;
+      d.contacts[d.nContacts++] = c;
+      addContactGen(m, c, d.gen.data());
+      // (a CVT pin's compliant normal is not among the smooth forces evaluated here)
+      if (c.kind == ContactPoint::Kind::PinSheave) d.powerDissipated += constrainedPinPower(m, c);
+    }
+  }
+  // ideal joints: the constraint forces, their tension along the links' mean axis
+  if (rigid.joints && static_cast<int>(rigid.joints->size()) == 2 * m.chain.links) {
+    const int n = m.chain.links;
+    for (int j = 0; j < n; ++j) {
+      const Vec2 force{(*rigid.joints)[2 * j], (*rigid.joints)[2 * j + 1]};
+      d.joints.setForce(j, force);
+      d.joints.tension[j] = jointTension(d.links[j], d.links[(j + 1) % n], force);
+      d.joints.deformation[j] = norm(d.links[j].front - d.links[(j + 1) % n].rear);
+    }
+  }
+}
+
+// The monitored link: the mean tension of its two joints, its position and its contact forces.
+void monitoredLinkOutputs(const Model& m, const Data& d, int monitoredLink, Outputs& out) {
+  const int n = m.chain.links;
+  const int L = (monitoredLink >= 0 && monitoredLink < n) ? monitoredLink : m.monitoredLink;
+  const LinkKin& lk = d.links[L];
+  out.linkTension = 0.5 * (dot(d.joints.force(L), lk.e) + dot(d.joints.force((L + n - 1) % n), lk.e));
+  out.linkPosition = lk.c;
+  out.linkNormalForce = out.linkSprocketForce = out.linkGuideForce = 0.0;
+  for (int i = 0; i < d.nContacts; ++i) {
+    const ContactPoint& c = d.contacts[i];
+    if (c.link != L) continue;
+    out.linkNormalForce += c.fN;
+    (c.kind == ContactPoint::Kind::RollerSprocket ? out.linkSprocketForce : out.linkGuideForce) += c.fN;
+  }
+}
+
+}  // namespace
+
 void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, const double* y, int monitoredLink,
                     Outputs& out, const RigidForces* rigid) {
   // the smooth forces at this state; rigid contacts and ideal joints carry the forces of the
@@ -50,26 +94,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   generalizedForces(m, d, in, t, y);
   d.listContacts = listing;
   if (d.jointForces) measureJoints(m, d);
-  if (rigid && rigid->contacts) {
-    d.nContacts = 0;
-    for (const ContactPoint& c : *rigid->contacts) {
-      if (d.nContacts >= static_cast<int>(d.contacts.size())) break;
-      d.contacts[d.nContacts++] = c;
-      addContactGen(m, c, d.gen.data());
-      // (a CVT pin's compliant normal is not among the smooth forces evaluated here)
-      if (c.kind == ContactPoint::Kind::PinSheave) d.powerDissipated += constrainedPinPower(m, c);
-    }
-  }
-  // ideal joints: the constraint forces, their tension along the links' mean axis
-  if (rigid && rigid->joints && static_cast<int>(rigid->joints->size()) == 2 * m.chain.links) {
-    const int n = m.chain.links;
-    for (int j = 0; j < n; ++j) {
-      const Vec2 force{(*rigid->joints)[2 * j], (*rigid->joints)[2 * j + 1]};
-      d.joints.setForce(j, force);
-      d.joints.tension[j] = jointTension(d.links[j], d.links[(j + 1) % n], force);
-      d.joints.deformation[j] = norm(d.links[j].front - d.links[(j + 1) % n].rear);
-    }
-  }
+  if (rigid) carryRigidForces(m, *rigid, d);
   // rotors: angles from their start, rates and the chain's torque on them, in the output sense
   const std::size_t nr = m.rotors.size();
   out.time = t;
@@ -86,20 +111,9 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   out.tensionerRate = d.tensionerRate;
   out.tightSpanForce = spanForce(m, d, m.tightSpan);
   out.slackSpanForce = spanForce(m, d, m.slackSpan);
-  // the monitored link: mean tension of its two joints, its position and its contact forces
-  const int n = m.chain.links;
-  const int L = (monitoredLink >= 0 && monitoredLink < n) ? monitoredLink : m.monitoredLink;
-  const LinkKin& lk = d.links[L];
-  out.linkTension = 0.5 * (dot(d.joints.force(L), lk.e) + dot(d.joints.force((L + n - 1) % n), lk.e));
-  out.linkPosition = lk.c;
-  out.linkNormalForce = out.linkSprocketForce = out.linkGuideForce = 0.0;
-  for (int i = 0; i < d.nContacts; ++i) {
-    const ContactPoint& c = d.contacts[i];
-    if (c.link != L) continue;
-    out.linkNormalForce += c.fN;
-    (c.kind == ContactPoint::Kind::RollerSprocket ? out.linkSprocketForce : out.linkGuideForce) += c.fN;
-  }
+  monitoredLinkOutputs(m, d, monitoredLink, out);
   // energy balance, contacts carrying force, the largest joint deformation
+  const int n = m.chain.links;
   out.energy = energyTerms(m, d, y);
   out.contacts = 0;
   for (int i = 0; i < d.nContacts; ++i) out.contacts += d.contacts[i].fN > 0.0 ? 1 : 0;
