@@ -9,6 +9,11 @@
 #                   with AddressSanitizer and UndefinedBehaviorSanitizer (any report fails it)
 #   ./run.sh sweep  speed sweeps and run-ups on Dask with Campbell diagrams (options of
 #                   python -m harness sweep; set-up first, as the other two)
+#   ./run.sh package the FMUs for download: dist/ChainDrive.fmu and dist/CVTChain.fmu with linux64
+#                   (glibc 2.17) and win64 binaries and their sources (python -m harness package)
+#
+# ./run.sh test packages the FMUs too and runs them on both platforms (the Windows binary under
+# wine) and from their sources.
 #
 # Installing Debian packages needs root (or sudo). Environment: CHAINDRIVE_BUILD (build
 # directory, default ./build), CHAINDRIVE_SANITIZE_BUILD (the sanitizer build, default
@@ -24,10 +29,12 @@ VENV="${CHAINDRIVE_VENV:-$ROOT/.venv}"
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libeigen3-dev libsundials-dev libsuitesparse-dev
               nlohmann-json3-dev libgtest-dev python3 python3-venv python3-pip
               libtbb12)  # libtbb12: the ecos co-simulation library of PyPI ecospy (tests/python/fmu/test_grid.py)
+# the tests run the packaged FMUs' Windows binaries under wine (tests/python/package)
+TEST_APT_PACKAGES=(wine64)
 
 install_system_packages() {
   local missing=()
-  for p in "${APT_PACKAGES[@]}"; do
+  for p in "${APT_PACKAGES[@]}" "$@"; do
     dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
   done
   if [ ${#missing[@]} -gt 0 ]; then
@@ -39,13 +46,14 @@ install_system_packages() {
   fi
 }
 
+# $1: the package's optional dependencies to install (pyproject.toml)
 setup_python() {
   if [ ! -x "$VENV/bin/python" ]; then
     echo "== creating the Python environment $VENV"
     python3 -m venv "$VENV"
   fi
   # the harness as a package (pyproject.toml), editable: harness/ is used in place
-  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[test]"
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[$1]"
 }
 
 build() {
@@ -83,7 +91,7 @@ sanitizer_stage() {
 
 setup() {
   install_system_packages
-  setup_python
+  setup_python test
   build
 }
 
@@ -98,11 +106,21 @@ case "${1:-}" in
     setup
     "$VENV/bin/python" -m harness sweep "$@"
     ;;
+  package)
+    shift
+    install_system_packages
+    setup_python test,package
+    "$VENV/bin/python" -m harness package "$@"
+    ;;
   test)
     shift
-    setup
+    install_system_packages "${TEST_APT_PACKAGES[@]}"
+    setup_python test,package
+    build
     echo "== C++ tests"
     ctest --test-dir "$CHAINDRIVE_BUILD" --output-on-failure -j 2
+    echo "== the FMUs for download (dist/)"
+    "$VENV/bin/python" -m harness package
     echo "== Python tests"
     "$VENV/bin/python" -m pytest -q tests/python "$@"
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
@@ -110,7 +128,7 @@ case "${1:-}" in
     fi
     ;;
   *)
-    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test | ./run.sh sweep [options of python -m harness sweep]" >&2
+    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test | ./run.sh sweep [options of python -m harness sweep] | ./run.sh package [options of python -m harness package]" >&2
     exit 2
     ;;
 esac

@@ -30,17 +30,7 @@ int hexValue(char c) {
   return -1;
 }
 
-}  // namespace
-
-std::string resourceDirectory(const char* location) {
-  if (!location || !*location) return "";
-  std::string s(location);
-  const std::string scheme = "file:";
-  if (s.compare(0, scheme.size(), scheme) != 0) return "";
-  s = s.substr(scheme.size());
-  // file:///dir, file:////dir, file://localhost/dir, file:/dir
-  if (s.compare(0, 11, "//localhost") == 0) s = s.substr(11);
-  while (s.size() > 1 && s[0] == '/' && s[1] == '/') s = s.substr(1);
+std::string percentDecoded(const std::string& s) {
   std::string out;
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (s[i] == '%' && i + 2 < s.size() && hexValue(s[i + 1]) >= 0 && hexValue(s[i + 2]) >= 0) {
@@ -50,14 +40,50 @@ std::string resourceDirectory(const char* location) {
       out.push_back(s[i]);
     }
   }
-  while (out.size() > 1 && out.back() == '/') out.pop_back();
+  return out;
+}
+
+bool isDriveLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+
+/// The Windows path of a file URI's path (after the authority): /C:/dir (or the old /C|/dir)
+/// is C:/dir; //server/share/dir (file:////server/share) stays a UNC path.
+std::string windowsPath(std::string path) {
+  if (path.size() >= 3 && path[0] == '/' && isDriveLetter(path[1]) && (path[2] == ':' || path[2] == '|')) {
+    path = path.substr(1);
+    path[1] = ':';
+  }
+  return path;
+}
+
+}  // namespace
+
+std::string resourceDirectory(const char* location, PathStyle style) {
+  if (!location || !*location) return "";
+  std::string s(location);
+  const std::string scheme = "file:";
+  if (s.compare(0, scheme.size(), scheme) != 0) return "";
+  s = s.substr(scheme.size());
+  // file:///dir, file:////dir, file://localhost/dir, file:/dir
+  if (s.compare(0, 11, "//localhost") == 0) s = s.substr(11);
+  std::string out;
+  if (style == PathStyle::Windows) {
+    // an empty authority (file:///C:/dir, file:////server/share) dropped; file://server/share
+    // keeps its host: both are the UNC path //server/share
+    if (s.compare(0, 3, "///") == 0) s = s.substr(2);
+    out = windowsPath(percentDecoded(s));
+  } else {
+    while (s.size() > 1 && s[0] == '/' && s[1] == '/') s = s.substr(1);
+    out = percentDecoded(s);
+  }
+  const std::size_t root = style == PathStyle::Windows && out.size() >= 2 && out[1] == ':' ? 3 : 1;
+  while (out.size() > root && out.back() == '/') out.pop_back();
   return out;
 }
 
 Host::Host(const char* instanceName, const fmi2CallbackFunctions* callbacks, const char* resourceLocation,
            bool loggingOn)
-    : name_(instanceName ? instanceName : ""), callbacks_(*callbacks), resourceDir_(resourceDirectory(resourceLocation)),
-      loggingOn_(loggingOn) {}
+    : name_(instanceName ? instanceName : ""), callbacks_(*callbacks),
+      resourceDir_(resourceDirectory(resourceLocation, kNativePathStyle)), loggingOn_(loggingOn) {}
 
 void Host::log(fmi2Status status, const char* category, const char* fmt, ...) {
   // errors and warnings always; other messages when logging is on and their category enabled

@@ -64,8 +64,17 @@ class Host {
   std::vector<std::string> categories_;  // enabled categories; empty = all
 };
 
-/// The resources directory from fmuResourceLocation (file:///dir, file:////dir, trailing '/',
-/// percent-encoding, NULL); empty if none.
-std::string resourceDirectory(const char* location);
+/// How a file URI's path reads as a path of the operating system.
+enum class PathStyle { Posix, Windows };
+#if defined(_WIN32)
+constexpr PathStyle kNativePathStyle = PathStyle::Windows;
+#else
+constexpr PathStyle kNativePathStyle = PathStyle::Posix;
+#endif
+
+/// The resources directory from fmuResourceLocation (file:///dir, file:////dir,
+/// file://localhost/dir, a trailing '/', percent-encoding, NULL) as a path of `style`: on Windows
+/// file:///C:/dir is C:/dir and file://server/share a UNC path; empty if there is none.
+std::string resourceDirectory(const char* location, PathStyle style);
 
 }  // namespace chaindrive::fmu

@@ -28,6 +28,7 @@
 #include "host.h"
 #include "run/simulation.h"
 #include "state_bytes.h"
+#include "utf8_path.h"
 #include "variables.h"
 
 namespace chaindrive::fmu {
@@ -321,7 +322,7 @@ class SimulationAdapter {
                           Description (*load)(const std::string&), Description (*builtIn)()) {
     const std::string& resourceDir = host_.resourceDir();
     const std::string path = !file.empty() ? file : resourceDir.empty() ? "" : resourceDir + "/" + resource;
-    if (!file.empty() || (!path.empty() && std::ifstream(path).good())) {
+    if (!file.empty() || (!path.empty() && std::ifstream(utf8Path(path)).good())) {
       Description desc = load(path);
       host_.log(fmi2OK, "logEvents", "%s: %s", what, path.c_str());
       return desc;

@@ -109,10 +109,11 @@ def table_inputs(torque, speed):
     return inputs
 
 
-def run_closed(args, duration, inputs, progress=True):
+def run_closed(args, duration, inputs, progress=True, fmu_file=None):
     """Master loop: inputs (table_inputs) looked up at the FMU's own angles before every step.
-    Returns (record, CPU seconds spent inside each fmi2DoStep)."""
-    s = fmu.Slave("chaindrive", parameters=parameters_of(args))
+    fmu_file: the FMU (a file or an unpacked folder; default the build's). Returns (record, CPU
+    seconds spent inside each fmi2DoStep)."""
+    s = fmu.Slave("chaindrive", fmu=fmu_file, parameters=parameters_of(args))
     n = int(round(duration / args.step))
     u0 = inputs(0.0, 0.0, 0.0, 0.0)
     with fmu_messages(s):

@@ -12,7 +12,28 @@
 
 #define CHAINDRIVE_ALWAYS_INLINE inline __attribute__((always_inline))
 
+// Code for AVX2 (without FMA) beside the baseline of every x86-64 CPU (SSE2), chosen at run time
+// by hasAvx2(). Elsewhere (a source build on another architecture) both are the baseline.
+#if defined(__x86_64__) || defined(_M_X64)
+#define CHAINDRIVE_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+#define CHAINDRIVE_TARGET_AVX2
+#endif
+
+/// A function `name` with the parameters `params` whose body is the always-inlined function
+/// name##Body called with `args`, compiled twice, for AVX2 and for the baseline, the copy chosen
+/// by hasAvx2() at every call. (GCC's target_clones does this with ifunc, which Windows and
+/// Clang's linkers for it do not have.)
+#define CHAINDRIVE_DISPATCH_BY_CPU(ret, name, params, args)                  \
+  CHAINDRIVE_TARGET_AVX2 static ret name##Avx2 params { return name##Body args; } \
+  static ret name##Baseline params { return name##Body args; }                   \
+  ret name params { return ::chaindrive::simd::hasAvx2() ? name##Avx2 args : name##Baseline args; }
+
 namespace chaindrive::simd {
+
+/// True where the CPU has AVX2 and the operating system saves its registers (asked once per
+/// process; the answer never changes).
+bool hasAvx2();
 
 /// The vector types of W lanes: doubles, the masks comparisons give, and 32-bit integers.
 template <int W>
@@ -106,13 +127,51 @@ CHAINDRIVE_ALWAYS_INLINE V abs(V v) {
 }
 CHAINDRIVE_ALWAYS_INLINE double abs(double v) { return std::fabs(v); }
 
+/// The lanes of a vector in another order: lanes 1, 0, 3, 2 (the pairs swapped) and 2, 3, 0, 1
+/// (the halves swapped), and from two vectors a and b the lanes a0, b0, a2, b2 (every even lane
+/// of each). Clang and GCC from 12 have __builtin_shufflevector with constant indices; older GCC
+/// (a source build on an older system) only __builtin_shuffle with a vector of indices.
+#if defined(__clang__) || __GNUC__ >= 12
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V swapPairs(V v) {
+  if constexpr (lanesOf<V>() == 4) return __builtin_shufflevector(v, v, 1, 0, 3, 2);
+  else return __builtin_shufflevector(v, v, 1, 0);
+}
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V swapHalves(V v) {
+  return __builtin_shufflevector(v, v, 2, 3, 0, 1);
+}
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V evenLanes(V a, V b) {
+  if constexpr (lanesOf<V>() == 4) return __builtin_shufflevector(a, b, 0, 4, 2, 6);
+  else return __builtin_shufflevector(a, b, 0, 2);
+}
+#else
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V swapPairs(V v) {
+  typedef decltype(V{} < V{}) Index;
+  if constexpr (lanesOf<V>() == 4) return __builtin_shuffle(v, Index{1, 0, 3, 2});
+  else return __builtin_shuffle(v, Index{1, 0});
+}
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V swapHalves(V v) {
+  typedef decltype(V{} < V{}) Index;
+  return __builtin_shuffle(v, Index{2, 3, 0, 1});
+}
+template <class V>
+CHAINDRIVE_ALWAYS_INLINE V evenLanes(V a, V b) {
+  typedef decltype(V{} < V{}) Index;
+  if constexpr (lanesOf<V>() == 4) return __builtin_shuffle(a, b, Index{0, 4, 2, 6});
+  else return __builtin_shuffle(a, b, Index{0, 2});
+}
+#endif
+
 /// Every lane of the mask combined with every other by op (& or |), by swapping halves: no lane
 /// is extracted one at a time.
 template <class M, class Op>
 CHAINDRIVE_ALWAYS_INLINE M foldLanes(M m, Op op) {
-  if constexpr (sizeof(M) == 32) m = op(m, __builtin_shuffle(m, M{2, 3, 0, 1}));
-  if constexpr (sizeof(M) == 32) return op(m, __builtin_shuffle(m, M{1, 0, 3, 2}));
-  else return op(m, __builtin_shuffle(m, M{1, 0}));
+  if constexpr (sizeof(M) == 32) m = op(m, swapHalves(m));
+  return op(m, swapPairs(m));
 }
 /// True when every lane of the mask is set.
 template <class M>

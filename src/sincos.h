@@ -5,12 +5,16 @@
 // chaotic link dynamics turn any such difference into a visibly different run.
 //
 // Range reduction by multiples of pi/2 in three parts (Cody-Waite, fdlibm's pio2_1/2/2t),
-// then fdlibm's kernel polynomials on [-pi/4, pi/4]; within 2 ulp of libm for |x| < 2^20
-// (tests/cpp/sincos_test.cpp). Beyond that, libm (a link turns 2^20 rad after hours of running).
+// then fdlibm's kernel polynomials on [-pi/4, pi/4]: for |x| < 2^20 within 2 ulp of libm
+// (tests/cpp/sincos_test.cpp) and 2.43 ulp of the exact value (tests/cpp/math/elementary_test.cpp).
+// Beyond that (a link turns 2^20 rad after hours of running), and for NaN and infinities,
+// math::sin and math::cos (src/math/elementary.h: Payne-Hanek reduction, within 1 ulp), which in
+// turn give these functions' bits below 2^20.
 #pragma once
 
 #include <cmath>
 
+#include "math/elementary.h"
 #include "simd.h"
 
 namespace chaindrive {
@@ -49,8 +53,8 @@ CHAINDRIVE_ALWAYS_INLINE void kernel(T x, T kd, T& s, T& c) {
 inline void sinCos(double x, double& sine, double& cosine) {
   using namespace sincos_detail;
   if (!(std::fabs(x) < kReducible)) {  // (and NaN)
-    sine = std::sin(x);
-    cosine = std::cos(x);
+    sine = math::sin(x);
+    cosine = math::cos(x);
     return;
   }
   const long long k = static_cast<long long>(x * kTwoOverPi + (x >= 0.0 ? 0.5 : -0.5));
@@ -66,7 +70,8 @@ inline void sinCos(double x, double& sine, double& cosine) {
 
 /// sinCos of a vector of W angles (simd.h), bit for bit the values of sinCos one at a time: the
 /// quadrant chosen by bit masks instead of a branch per angle (the link angles around the chain
-/// fall in every quadrant); lanes beyond the reducible range (and NaN) fall back to libm.
+/// fall in every quadrant); lanes beyond the reducible range (and NaN) fall back to math::sin and
+/// math::cos, one angle at a time.
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE void sinCosLanes(typename simd::Lanes<W>::V x, typename simd::Lanes<W>::V& sine,
                                           typename simd::Lanes<W>::V& cosine) {
@@ -91,8 +96,8 @@ CHAINDRIVE_ALWAYS_INLINE void sinCosLanes(typename simd::Lanes<W>::V x, typename
   if (simd::allSet(reducible)) return;
   for (int l = 0; l < W; ++l)
     if (!reducible[l]) {
-      sine[l] = std::sin(x[l]);
-      cosine[l] = std::cos(x[l]);
+      sine[l] = math::sin(x[l]);
+      cosine[l] = math::cos(x[l]);
     }
 }
 

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "math/elementary.h"
+
 namespace chaindrive {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -28,10 +30,10 @@ inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline double norm2(Vec2 a) { return a.x * a.x + a.y * a.y; }
 /// left normal (rotation by +90 degrees)
 inline Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
-inline Vec2 unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
+inline Vec2 unit(double angle) { return {math::cos(angle), math::sin(angle)}; }
 inline Vec2 rotate(Vec2 a, double c, double s) { return {c * a.x - s * a.y, s * a.x + c * a.y}; }
-inline Vec2 rotate(Vec2 a, double angle) { return rotate(a, std::cos(angle), std::sin(angle)); }
-inline double angleOf(Vec2 a) { return std::atan2(a.y, a.x); }
+inline Vec2 rotate(Vec2 a, double angle) { return rotate(a, math::cos(angle), math::sin(angle)); }
+inline double angleOf(Vec2 a) { return math::atan2(a.y, a.x); }
 
 /// Wraps an angle into (-pi, pi].
 inline double wrapAngle(double a) {

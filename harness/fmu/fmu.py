@@ -2,6 +2,7 @@
 loops, with the FMU's log messages collected."""
 import functools
 import math
+import os
 import time
 
 from fmpy import calloc, extract, free, read_model_description
@@ -23,9 +24,10 @@ def fmu_path(name="ChainDrive"):
 
 @functools.lru_cache(maxsize=None)
 def unpacked(path=None):
-    """(model description, unzip directory) of the FMU, extracted once per process."""
+    """(model description, unzip directory) of the FMU, extracted once per process (a folder is
+    taken as the FMU already unpacked)."""
     path = str(path or fmu_path())
-    return read_model_description(path), extract(path)
+    return read_model_description(path), path if os.path.isdir(path) else extract(path)
 
 
 class Slave:

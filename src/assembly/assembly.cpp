@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "assembly/model.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -99,7 +100,7 @@ class Layout {
       const RouteCircle c = guideCircle(e, x, static_cast<int>(f));
       Vec2 m1, m2;
       if (!commonTangent(out[(i + n - 1) % n], c, m1) || !commonTangent(c, out[(i + 1) % n], m2)) continue;
-      const double cg = std::cos(rot(e, x)), sg = std::sin(rot(e, x));
+      const double cg = math::cos(rot(e, x)), sg = math::sin(rot(e, x));
       const Vec2 d1 = rotate(c.signedRadius * m1, cg, -sg), d2 = rotate(c.signedRadius * m2, cg, -sg);
       if (g.faces[f].arc.contains(d1) && g.faces[f].arc.contains(d2)) {
         e.face = static_cast<int>(f);

@@ -1,4 +1,5 @@
 #include "assembly/chain_path.h"
+#include "math/elementary.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +16,7 @@ bool commonTangent(const RouteCircle& a, const RouteCircle& b, Vec2& m) {
   const double c = (a.signedRadius - b.signedRadius) / dist;
   if (std::fabs(c) > 1.0) return false;
   const double beta = angleOf(d);
-  const double psi = -std::acos(c);
+  const double psi = -math::acos(c);
   m = unit(beta + psi);
   return true;
 }
@@ -126,7 +127,7 @@ double ChainPath::nextPin(double s, double pitch) const {
   if (g.isArc) {
     const double r = std::fabs(g.signedRadius);
     if (pitch < 2.0 * r) {
-      const double ds = 2.0 * r * std::asin(pitch / (2.0 * r));
+      const double ds = 2.0 * r * math::asin(pitch / (2.0 * r));
       if (ds <= remaining) return s + ds;
     }
   } else if (pitch <= remaining) {

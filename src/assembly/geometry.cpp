@@ -1,4 +1,5 @@
 #include "assembly/geometry.h"
+#include "math/elementary.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -37,7 +38,7 @@ ToothGap ToothGap::build(int teeth, double pitch, double rollerDiameter, double 
   g.teeth = teeth;
   const double z = static_cast<double>(teeth);
   g.gapAngle = 2.0 * kPi / z;
-  g.pitchRadius = pitch / (2.0 * std::sin(kPi / z));
+  g.pitchRadius = pitch / (2.0 * math::sin(kPi / z));
   g.rollerRadius = 0.5 * rollerDiameter;
   g.seatRadius = seatRadius;
   g.seatAngle = seatAngle;
@@ -52,7 +53,7 @@ ToothGap ToothGap::build(int teeth, double pitch, double rollerDiameter, double 
 
   const double R = g.pitchRadius, ri = seatRadius, re = flankRadius, h = 0.5 * seatAngle;
   const Vec2 C{R, 0.0};
-  const Vec2 u{-std::cos(h), std::sin(h)};  // from the seat centre to the seat/flank junction
+  const Vec2 u{-math::cos(h), math::sin(h)};  // from the seat centre to the seat/flank junction
   const Vec2 P1 = C + ri * u;
   const Vec2 F = P1 + re * u;                // flank centre: the flank is convex (tooth material inside)
   g.seat = ArcRange{C, ri, u, Vec2{-1.0, 0.0}};

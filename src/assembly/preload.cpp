@@ -154,7 +154,7 @@ struct PreloadSolve {
   std::vector<double> scale;     // of the residuals: torques on links by the pitch, on rotors by ~ 0.05 m
   std::vector<double> massDiag;  // of the Levenberg-Marquardt shift
   std::vector<double> trial;
-  double lambda = std::pow(2.0 * kPi * 100.0, 2);
+  double lambda = (2.0 * kPi * 100.0) * (2.0 * kPi * 100.0);
   double maxScaled = 0.0;        // largest scaled residual of the last residual() call
   double r0 = 0.0, rMax = 0.0, p0 = 0.0;  // merit, largest scaled residual and potential at y
 };

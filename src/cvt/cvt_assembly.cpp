@@ -7,6 +7,7 @@
 #include "assembly/preload.h"
 #include "description/fields.h"
 #include "cvt/cvt_outputs.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -74,8 +75,8 @@ void setChain(const CvtDescription& d, Model& m) {
   ch.jointClearance = d.joint.clearance;
   m.frictionRegularization = d.frictionRegularization;
   PinSheaveLaw& law = m.pinSheave;
-  law.tanWedge = std::tan(d.wedgeHalfAngle);
-  law.cosWedge = std::cos(d.wedgeHalfAngle);
+  law.tanWedge = math::tan(d.wedgeHalfAngle);
+  law.cosWedge = math::cos(d.wedgeHalfAngle);
   law.axialStiffness = d.pinAxialStiffness;
   law.axialDamping = d.pinAxialDamping;
   law.friction = d.friction;

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "description/fields.h"
+#include "math/elementary.h"
+#include "utf8_path.h"
 
 namespace chaindrive {
 
@@ -425,12 +427,12 @@ Iso606ToothForm iso606ToothForm(int z, double pitch, double d1, const std::strin
   // ISO 606 empirical formulas are written in millimetres.
   const double d1mm = d1 * 1e3, pmm = pitch * 1e3;
   const double dz = static_cast<double>(z);
-  const double riMin = 0.505 * d1mm, riMax = 0.505 * d1mm + 0.069 * std::cbrt(d1mm);
+  const double riMin = 0.505 * d1mm, riMax = 0.505 * d1mm + 0.069 * math::cbrt(d1mm);
   const double reMinGap = 0.008 * d1mm * (dz * dz + 180.0);  // flank radius of the minimum tooth gap form
   const double reMaxGap = 0.12 * d1mm * (dz + 2.0);           // flank radius of the maximum tooth gap form
   const double aMinGap = (140.0 - 90.0 / dz) * kPi / 180.0;  // seating angle, minimum gap form
   const double aMaxGap = (120.0 - 90.0 / dz) * kPi / 180.0;
-  const double pitchDiameter = pmm / std::sin(kPi / dz);
+  const double pitchDiameter = pmm / math::sin(kPi / dz);
   const double daMax = pitchDiameter + 1.25 * pmm - d1mm, daMin = pitchDiameter + pmm * (1.0 - 1.6 / dz) - d1mm;
   Iso606ToothForm t{};
   if (form == "min") {
@@ -478,7 +480,7 @@ DriveDescription parseDriveDescription(std::string_view text) {
 }
 
 std::string readDescriptionFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(utf8Path(path), std::ios::binary);
   if (!in) throw DescriptionError({"(file) " + path + ": cannot be opened for reading"});
   std::ostringstream ss;
   ss << in.rdbuf();

@@ -10,6 +10,7 @@
 #include "dynamics/data.h"
 #include "assembly/model.h"
 #include "simd.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -23,9 +24,9 @@ template <class T>
 CHAINDRIVE_ALWAYS_INLINE T springForce(const ContactLaw& law, T delta) {
   if (law.exponent == 1.0) return law.stiffness * delta;
   if constexpr (std::is_same_v<T, double>) {
-    return law.stiffness * std::pow(delta, law.exponent);
+    return law.stiffness * math::pow(delta, law.exponent);
   } else {
-    for (int l = 0; l < simd::lanesOf<T>(); ++l) delta[l] = law.stiffness * std::pow(delta[l], law.exponent);
+    for (int l = 0; l < simd::lanesOf<T>(); ++l) delta[l] = law.stiffness * math::pow(delta[l], law.exponent);
     return delta;
   }
 }

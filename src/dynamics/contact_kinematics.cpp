@@ -9,6 +9,7 @@
 #include "dynamics/contact_lanes.h"
 #include "dynamics/link_loops.h"
 #include "sincos.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -57,7 +58,7 @@ int searchGap(const SprocketModel& s, Vec2 body, int guess) {
   const int z = s.gap.teeth;
   int k = guess;
   if (k < 0 || k >= z) {
-    k = static_cast<int>(std::lround(std::atan2(body.y, body.x) / s.gap.gapAngle)) % z;
+    k = static_cast<int>(std::lround(math::atan2(body.y, body.x) / s.gap.gapAngle)) % z;
     if (k < 0) k += z;
   }
   for (int i = 0; i < z; ++i) {

@@ -1,3 +1,9 @@
+// The 4-lane vectors are always inlined into the AVX2 functions: GCC's note that passing them
+// between functions compiled without AVX would change the ABI does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 #include "dynamics/contact_lanes.h"
 
 #include <algorithm>
@@ -132,8 +138,7 @@ struct Sums {
 // Lanes l and l + 1 (a link's two rollers) added in both: the sums per even link.
 template <class V>
 CHAINDRIVE_ALWAYS_INLINE V pairSums(V v) {
-  if constexpr (simd::lanesOf<V>() == 4) return v + __builtin_shuffle(v, decltype(V{} < V{}){1, 0, 3, 2});
-  else return v + __builtin_shuffle(v, decltype(V{} < V{}){1, 0});
+  return v + simd::swapPairs(v);
 }
 
 // The tooth gap of each queried roller, into the hints from h: the gap of its last query while it
@@ -370,7 +375,7 @@ CHAINDRIVE_ALWAYS_INLINE int plateLanes(const Model& m, Data& d, int guide, int 
   return count;
 }
 
-__attribute__((target("avx2"))) int rollersAvx2(const Model& m, Data& d, int s, double margin, bool forces, int count,
+CHAINDRIVE_TARGET_AVX2 int rollersAvx2(const Model& m, Data& d, int s, double margin, bool forces, int count,
                                                 double& power) {
   return rollerLanes<4>(m, d, s, margin, forces, count, power);
 }
@@ -378,7 +383,7 @@ int rollersSse2(const Model& m, Data& d, int s, double margin, bool forces, int 
   return rollerLanes<2>(m, d, s, margin, forces, count, power);
 }
 
-__attribute__((target("avx2"))) int platesAvx2(const Model& m, Data& d, int guide, int face, const PlacedFace& pf,
+CHAINDRIVE_TARGET_AVX2 int platesAvx2(const Model& m, Data& d, int guide, int face, const PlacedFace& pf,
                                                double margin, double reach, bool forces, int count, double& power) {
   return plateLanes<4>(m, d, guide, face, pf, margin, reach, forces, count, power);
 }
@@ -387,7 +392,7 @@ int platesSse2(const Model& m, Data& d, int guide, int face, const PlacedFace& p
   return plateLanes<2>(m, d, guide, face, pf, margin, reach, forces, count, power);
 }
 
-__attribute__((target("avx2"))) void windowsAvx2(const Model& m, Data& d, double margin) { windowLanes<4>(m, d, margin); }
+CHAINDRIVE_TARGET_AVX2 void windowsAvx2(const Model& m, Data& d, double margin) { windowLanes<4>(m, d, margin); }
 void windowsSse2(const Model& m, Data& d, double margin) { windowLanes<2>(m, d, margin); }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "dynamics/joint_forces.h"
 #include "dynamics/link_loops.h"
 #include "linear/array_loops.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -169,7 +170,7 @@ EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {
     const ContactLaw& law = c.kind == ContactPoint::Kind::RollerSprocket ? m.rollerSprocket : m.plateGuide;
     const double depth = -c.gap;  // (a linear law's integral without pow: the outputs at every 0.1 ms)
     e.elastic += law.exponent == 1.0 ? law.stiffness * (depth * depth) / 2.0
-                                     : law.stiffness * std::pow(depth, law.exponent + 1.0) / (law.exponent + 1.0);
+                                     : law.stiffness * math::pow(depth, law.exponent + 1.0) / (law.exponent + 1.0);
   }
   double grav = 0.0;
   e.elastic += bodyPotentialEnergy(m, d, grav);

@@ -1,8 +1,12 @@
 #include "dynamics/health.h"
 
+#include "simd.h"
+
 namespace chaindrive {
 
-__attribute__((target_clones("avx2", "default"))) bool allFinite(const double* x, int n) {
+namespace {
+
+CHAINDRIVE_ALWAYS_INLINE bool allFiniteBody(const double* x, int n) {
   typedef double Quad __attribute__((vector_size(32)));
   Quad s0 = {}, s1 = {};
   int i = 0;
@@ -18,5 +22,9 @@ __attribute__((target_clones("avx2", "default"))) bool allFinite(const double* x
   const Quad s = s0 + s1;
   return s[0] + s[1] + s[2] + s[3] + rest == 0.0;
 }
+
+}  // namespace
+
+CHAINDRIVE_DISPATCH_BY_CPU(bool, allFinite, (const double* x, int n), (x, n))
 
 }  // namespace chaindrive

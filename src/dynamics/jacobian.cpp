@@ -9,6 +9,7 @@
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/joint_forces.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -38,8 +39,8 @@ void rotorState(const Model& m, const Data& d, const double* y, int r, double& a
                 double& rate) {
   const RotorModel& ro = m.rotors[r];
   angle = y[ro.stateAngle];
-  c = std::cos(angle);
-  s = std::sin(angle);
+  c = math::cos(angle);
+  s = math::sin(angle);
   rate = ro.prescribed ? m.sense * d.inputs.crankSpeed : y[ro.stateRate];
 }
 

@@ -1,3 +1,9 @@
+// The 4-lane vectors are always inlined into the AVX2 functions: GCC's note that passing them
+// between functions compiled without AVX would change the ABI does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 #include "dynamics/link_loops.h"
 
 #include <algorithm>
@@ -196,27 +202,27 @@ CHAINDRIVE_ALWAYS_INLINE void dampedKickLanes(double a, double base, const doubl
   });
 }
 
-__attribute__((target("avx2"))) void kinematicsAvx2(const Model& m, Data& d, const double* y) {
+CHAINDRIVE_TARGET_AVX2 void kinematicsAvx2(const Model& m, Data& d, const double* y) {
   kinematicsLanes<4>(m, d, y);
 }
 void kinematicsSse2(const Model& m, Data& d, const double* y) { kinematicsLanes<2>(m, d, y); }
 
-__attribute__((target("avx2"))) void dampedKickAvx2(double a, double base, const double* extra, int n, double* kick) {
+CHAINDRIVE_TARGET_AVX2 void dampedKickAvx2(double a, double base, const double* extra, int n, double* kick) {
   dampedKickLanes<4>(a, base, extra, n, kick);
 }
 void dampedKickSse2(double a, double base, const double* extra, int n, double* kick) {
   dampedKickLanes<2>(a, base, extra, n, kick);
 }
 
-__attribute__((target("avx2"))) double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
+CHAINDRIVE_TARGET_AVX2 double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
 double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
 
-__attribute__((target("avx2"))) void dampingAvx2(const Model& m, Data& d, double a, double* accel) {
+CHAINDRIVE_TARGET_AVX2 void dampingAvx2(const Model& m, Data& d, double a, double* accel) {
   jointDampingLanes<4>(m, d, a, accel);
 }
 void dampingSse2(const Model& m, Data& d, double a, double* accel) { jointDampingLanes<2>(m, d, a, accel); }
 
-__attribute__((target("avx2"))) double measuresAvx2(const Model& m, const Data& d, double* tension,
+CHAINDRIVE_TARGET_AVX2 double measuresAvx2(const Model& m, const Data& d, double* tension,
                                                     double* deformation) {
   return jointMeasureLanes<4>(m, d, tension, deformation);
 }
@@ -226,7 +232,7 @@ double measuresSse2(const Model& m, const Data& d, double* tension, double* defo
 
 }  // namespace
 
-int supportedVectorLanes() { return __builtin_cpu_supports("avx2") ? 4 : 2; }
+int supportedVectorLanes() { return simd::hasAvx2() ? 4 : 2; }
 
 void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
   if (d.vectorLanes == 4) kinematicsAvx2(m, d, y);

@@ -16,9 +16,7 @@ namespace chaindrive {
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE typename simd::Lanes<W>::V pinLanes(typename simd::Lanes<W>::V rear,
                                                              typename simd::Lanes<W>::V front) {
-  typename simd::Lanes<W>::Mask pick;
-  for (int l = 0; l < W; ++l) pick[l] = l % 2 == 0 ? l : W + l - 1;
-  return __builtin_shuffle(rear, front, pick);
+  return simd::evenLanes(rear, front);
 }
 
 /// The lanes of this CPU's widest vectors the loops use: 4 with AVX2, else 2.

@@ -1,5 +1,5 @@
 // Loops over arrays of doubles that the solver runs at every evaluation, in vector instructions:
-// AVX2 where the CPU has it, SSE2 elsewhere (target_clones), each element the same operations as
+// AVX2 where the CPU has it, SSE2 elsewhere (simd.h), each element the same operations as
 // one at a time and without FMA, so the same bits on every x86-64 machine. Arrays must not overlap.
 #pragma once
 

@@ -1,4 +1,5 @@
 #include "nonsmooth/formulations.h"
+#include "math/elementary.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,8 +24,8 @@ int variables(const ContactRow& r) {
   return r.kind == RowKind::PolygonFriction ? r.facets + 1 : 1;
 }
 // the polygon's facet direction j of d, in the row's two directions
-double facetCos(int j, int d) { return std::cos(2.0 * 3.14159265358979323846 * j / d); }
-double facetSin(int j, int d) { return std::sin(2.0 * 3.14159265358979323846 * j / d); }
+double facetCos(int j, int d) { return math::cos(2.0 * 3.14159265358979323846 * j / d); }
+double facetSin(int j, int d) { return math::sin(2.0 * 3.14159265358979323846 * j / d); }
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "run/inputs.h"
+#include "math/elementary.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,8 +13,8 @@ void HarmonicInputs::evaluate(double t, InputValues& v) const {
   double w = mean_, a = 0.0;
   for (const Order& o : orders_) {
     const double arg = o.order * mean_ * t + o.phase;
-    w += o.order * mean_ * o.amplitude * std::cos(arg);
-    a -= o.order * o.order * mean_ * mean_ * o.amplitude * std::sin(arg);
+    w += o.order * mean_ * o.amplitude * math::cos(arg);
+    a -= o.order * o.order * mean_ * mean_ * o.amplitude * math::sin(arg);
   }
   v.crankSpeed = w;
   v.crankAcceleration = a;

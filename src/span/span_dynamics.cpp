@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dynamics/body_forces.h"
+#include "math/elementary.h"
 
 namespace chaindrive::span {
 
@@ -52,8 +53,8 @@ void rotorKinematics(const SpanModel& m, SpanData& d, const double* y) {
     const double a = y[m.stateAngle[r]];
     d.rotorAngle[r] = a;
     if (!lm.rotors[r].isSprocket) {  // only guides need them (tensioner, weight)
-      d.rotorCos[r] = std::cos(a);
-      d.rotorSin[r] = std::sin(a);
+      d.rotorCos[r] = math::cos(a);
+      d.rotorSin[r] = math::sin(a);
     }
     d.rotorRate[r] = lm.rotors[r].prescribed ? lm.sense * d.inputs.crankSpeed : y[m.stateRate[r]];
   }
@@ -89,7 +90,7 @@ void evaluateSpan(const SpanModel& m, SpanData& d, int i) {
                                                            m.frictionRegularization * m.frictionRegularization);
   double weighted = sp.parts[0];
   for (std::size_t k = 1; k < sp.parts.size(); ++k) {
-    st.factor[k] = st.factor[k - 1] * std::exp(mu * sp.wraps[k - 1]);
+    st.factor[k] = st.factor[k - 1] * math::exp(mu * sp.wraps[k - 1]);
     weighted += sp.parts[k] * st.factor[k];
   }
   st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * sp.partsLength / weighted;

@@ -1,6 +1,7 @@
 #include "span/span_model.h"
 
 #include "span/span_calibration.h"
+#include "math/elementary.h"
 
 #include <cmath>
 #include <cstdio>
@@ -65,7 +66,7 @@ double referenceLength(const ChainPath& path, const ChainPath& ref, int a, int b
 
 Vec2 runningTangent(double polarAngle, double signedRadius) {
   const double sg = signedRadius > 0.0 ? 1.0 : -1.0;
-  return sg * Vec2{-std::sin(polarAngle), std::cos(polarAngle)};
+  return sg * Vec2{-math::sin(polarAngle), math::cos(polarAngle)};
 }
 
 // One node of a guide table: the span's length from a to b and the guide torque coefficients
@@ -129,7 +130,7 @@ SpanEnd spanEnd(const Model& m, int sprocket, double tangentAngle) {
   e.pitch = m.chain.pitch;
   // a tooth gap (a seated roller) sits at the rotor's initial angle
   e.phase = wrapPitch(m.sense * (m.rotors[s.rotor].initialAngle - tangentAngle), e.toothAngle);
-  e.passedAtPhase = e.radius * std::sin(e.phase);
+  e.passedAtPhase = e.radius * math::sin(e.phase);
   return e;
 }
 

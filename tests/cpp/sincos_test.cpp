@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -47,12 +48,38 @@ TEST(SinCos, QuadrantsAndSpecialValues) {
   EXPECT_EQ(c, 1.0);
   sinCos(std::nan(""), s, c);
   EXPECT_TRUE(std::isnan(s) && std::isnan(c));
-  sinCos(1e9, s, c);  // beyond the reduction's range: libm
-  EXPECT_EQ(s, std::sin(1e9));
+  sinCos(INFINITY, s, c);
+  EXPECT_TRUE(std::isnan(s) && std::isnan(c));
+}
+
+// Beyond the reduction's range (2^20), math::sin and math::cos (Payne-Hanek reduction): within
+// 1 ulp of the exact value (glibc's long double functions), the same for a pair of angles.
+TEST(SinCos, WithinOneUlpBeyondTwoToTheTwenty) {
+  const auto ulpsOfExact = [](double value, long double exact) {
+    int exponent = 0;
+    frexpl(exact, &exponent);
+    return static_cast<double>(fabsl(value - exact) / ldexpl(1.0L, exponent - 53));
+  };
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> binade(20.0, 1000.0);
+  double worstSin = 0.0, worstCos = 0.0;
+  for (int i = 0; i < 20000; ++i) {
+    const double x = (i % 2 ? -1.0 : 1.0) * std::exp2(binade(rng));
+    double s = 0.0, c = 0.0;
+    sinCos(x, s, c);
+    worstSin = std::max(worstSin, ulpsOfExact(s, sinl(x)));
+    worstCos = std::max(worstCos, ulpsOfExact(c, cosl(x)));
+  }
+  EXPECT_LE(worstSin, 1.0);
+  EXPECT_LE(worstCos, 1.0);
+  double s = 0.0, c = 0.0;
+  sinCos(1e9, s, c);
+  EXPECT_LE(ulpsOfExact(s, sinl(1e9L)), 1.0);
+  EXPECT_LE(ulpsOfExact(c, cosl(1e9L)), 1.0);
 }
 
 // The paired version must give the scalar one's bits in both lanes, in every quadrant, for
-// angles of either sign, at the quadrant boundaries, and for the lanes that fall back to libm
+// angles of either sign, at the quadrant boundaries, and for the lanes that fall back to math::sin
 // (large angles, NaN, infinities) next to a lane that does not.
 TEST(SinCos, PairsGiveTheBitsOfSingleAngles) {
   std::mt19937_64 rng(11);

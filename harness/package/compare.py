@@ -1,0 +1,225 @@
+"""The same bits on every platform: an FMU of dist/ run with each of its binaries and a binary
+built from its sources/, the outputs of every communication step compared bit for bit.
+
+- linux64: in this process through fmpy, in closed loop with the measured-torque tables (the
+  main job's master loop, harness/job.py); the inputs it applied are recorded.
+- win64: under wine, by a small FMI master of our own (fmi2_master.c, built with zig) that replays
+  exactly those inputs, step by step, and names the resources folder as Windows importers do
+  (file:///Z:/...; wine's drive Z: is the Linux root). Replaying is the closed loop: the loop's
+  inputs are a function of the outputs, so equal outputs at every step mean equal inputs too.
+  (fmpy's own win64 remoting is not used: its server watches a lock file that wine can always
+  open, and it quits in the middle of a run.)
+- sources: the linux64 binary built by fmpy from sources/ (fmpy.build, as an importer builds a
+  source FMU), run as linux64 is.
+The package command prints the comparison (--compare); tests/python/package asserts it.
+"""
+import argparse
+import dataclasses
+import os
+import pathlib
+import shutil
+import struct
+import subprocess
+import sys
+import zipfile
+from urllib.parse import quote
+
+import numpy as np
+from fmpy import read_model_description
+
+from .. import job
+from ..tables import tables
+from ..fmu import fmu
+from .binaries import fmi2_include_dir
+
+WINE_DIR = "/usr/lib/wine"  # Debian's wine64
+MASTER_SOURCE = pathlib.Path(__file__).with_name("fmi2_master.c")
+TIMING_RPM = 3000.0
+CVT_INPUTS = {"drivingPulley.w": fmu.rpm_to_rad_s(2000.0), "drivenPulley.tauLoad": 60.0}
+COMMUNICATION_STEP = 1e-4
+
+
+@dataclasses.dataclass
+class Run:
+    """What a run did and gave: parameters {name: value}, the inputs applied (row 0 before the
+    initialization, row k before step k), the outputs after the initialization and every step."""
+    parameters: dict
+    inputs: dict   # name: array of steps + 1
+    outputs: dict  # name: array of steps + 1
+    log: list = dataclasses.field(default_factory=list)  # the FMU's messages
+
+
+def unpack(fmu_file, dest):
+    dest = pathlib.Path(dest)
+    if dest.exists():
+        shutil.rmtree(dest)
+    with zipfile.ZipFile(fmu_file) as z:
+        z.extractall(dest)
+    return dest
+
+
+def source_built(unzipped, dest, jobs=2):
+    """A copy of the unpacked FMU whose linux64 binary is built from its sources/ by fmpy, as an
+    importer builds a source FMU (its own CMake project, sources/ the only include directory)."""
+    from fmpy.build import build_platform_binary
+    dest = pathlib.Path(dest)
+    if dest.exists():
+        shutil.rmtree(dest)
+    shutil.copytree(unzipped, dest, ignore=shutil.ignore_patterns("binaries"))
+    build = dest.parent / f"{dest.name}-build"
+    shutil.rmtree(build, ignore_errors=True)
+    build.mkdir(parents=True)
+    os.environ["CMAKE_BUILD_PARALLEL_LEVEL"] = str(jobs)
+    build_platform_binary(dest, build_dir=build)
+    binary = dest / "binaries" / "linux64" / f"{model_identifier(dest)}.so"
+    if not binary.exists():
+        raise FileNotFoundError(f"the source build wrote no {binary}")
+    return dest
+
+
+def model_identifier(fmu_dir):
+    return read_model_description(str(fmu_dir)).coSimulation.modelIdentifier
+
+
+# ---- linux64 in this process ----
+
+def run_timing(fmu_dir, duration, method=None):
+    """ChainDrive in closed loop with the measured-torque tables at 3000 rpm, the main job's
+    options and master loop (default method unless `method`)."""
+    ap = argparse.ArgumentParser()
+    job.add_arguments(ap)
+    args = job.check(ap, ap.parse_args(["--rpm", str(TIMING_RPM)] + (["--method", method] if method else [])))
+    inputs = job.table_inputs(tables.camshaft_torque(args.rpm, None), tables.crankshaft_speed(args.rpm, None))
+    record, _ = job.run_closed(args, duration, inputs, progress=False, fmu_file=fmu_dir)
+    # (the record's inputs of row 0 are those of the initialization, looked up at zero angles)
+    applied = {name: np.array(record[f"input.{name}"]) for name in fmu.INPUTS}
+    for name, value in inputs(0.0, 0.0, 0.0, 0.0).items():
+        applied[name][0] = value
+    outputs = {k: v for k, v in record.items() if k != "time" and not k.startswith("input.")}
+    return Run(job.parameters_of(args), applied, outputs)
+
+
+def run_cvt(fmu_dir, duration):
+    """CVTChain at constant driving speed and load (the inputs set before every step)."""
+    s = fmu.Slave("cvt", fmu=fmu_dir)
+    s.initialize(inputs=CVT_INPUTS)
+    rows = [s.get()]
+    steps = int(round(duration / COMMUNICATION_STEP))
+    for k in range(steps):
+        s.step(COMMUNICATION_STEP, inputs=CVT_INPUTS, t=k * COMMUNICATION_STEP)
+        rows.append(s.get())
+    s.close()
+    inputs = {name: np.full(steps + 1, value) for name, value in CVT_INPUTS.items()}
+    return Run({}, inputs, {name: np.array([r[name] for r in rows]) for name in rows[0]}, s.messages)
+
+
+# ---- win64 under wine ----
+
+def use_wine(prefix):
+    """wine64 on the PATH (Debian keeps it in /usr/lib/wine), its prefix (the Windows folders) in
+    `prefix`, its own diagnostics off."""
+    if not os.path.exists(os.path.join(WINE_DIR, "wine64")):
+        raise FileNotFoundError(f"{WINE_DIR}/wine64 not found: install Debian's wine64 (./run.sh test does)")
+    if WINE_DIR not in os.environ["PATH"].split(os.pathsep):
+        os.environ["PATH"] = WINE_DIR + os.pathsep + os.environ["PATH"]
+    os.environ["WINEPREFIX"] = str(prefix)
+    os.environ["WINEDEBUG"] = "-all"
+
+
+def build_master(work):
+    """fmi2_master.c for win64, with zig."""
+    exe = pathlib.Path(work) / "fmi2_master.exe"
+    exe.parent.mkdir(parents=True, exist_ok=True)
+    subprocess.run([sys.executable, "-m", "ziglang", "cc", "-target", "x86_64-windows-gnu", "-O2", "-Wall", "-Werror",
+                    f"-I{fmi2_include_dir()}", str(MASTER_SOURCE), "-o", str(exe)], check=True)
+    return exe
+
+
+def windows_uri(path):
+    return "file:///Z:" + quote(pathlib.Path(path).resolve().as_posix())
+
+
+def replay_on_windows(master, fmu_dir, run, work):
+    """The run's parameters and inputs replayed on the FMU's win64 binary under wine; returns
+    the Run it gives (its outputs and the FMU's log)."""
+    md = read_model_description(str(fmu_dir))
+    variables = {v.name: v for v in md.modelVariables}
+    reals = [n for n in run.outputs if variables[n].type == "Real"]
+    integers = [n for n in run.outputs if variables[n].type == "Integer"]
+    scenario, outputs = pathlib.Path(work) / "scenario.txt", pathlib.Path(work) / "outputs.txt"
+    scenario.write_text(scenario_text(run, variables, reals, integers))
+    dll = pathlib.Path(fmu_dir) / "binaries" / "win64" / f"{md.coSimulation.modelIdentifier}.dll"
+    p = subprocess.run(["wine64", str(master), str(dll), md.guid, windows_uri(pathlib.Path(fmu_dir) / "resources"),
+                        str(scenario), str(outputs)], capture_output=True, text=True, timeout=1800)
+    log = p.stdout.splitlines()
+    if p.returncode != 0:
+        raise RuntimeError(f"fmi2_master under wine failed ({p.returncode}): {' | '.join(log[-5:])} {p.stderr[-500:]}")
+    rows = [line.split() for line in outputs.read_text().splitlines()]
+    got = {n: np.array([bits_to_float(r[i]) for r in rows]) for i, n in enumerate(reals)}
+    got.update({n: np.array([int(r[len(reals) + i]) for r in rows]) for i, n in enumerate(integers)})
+    return Run(run.parameters, run.inputs, got, log)
+
+
+def scenario_text(run, variables, reals, integers):
+    """The scenario file of fmi2_master.c."""
+    lines = [f"parameters {len(run.parameters)}"]
+    for name, value in run.parameters.items():
+        v = variables[name]
+        if v.type == "Real":
+            lines.append(f"{v.valueReference} r {float_to_bits(value)}")
+        elif v.type in ("Integer", "Boolean"):
+            lines.append(f"{v.valueReference} {v.type[0].lower()} {int(value)}")
+        else:
+            if not value or any(c.isspace() for c in str(value)):
+                raise ValueError(f"parameter {name}: '{value}' cannot be replayed (empty or with spaces)")
+            lines.append(f"{v.valueReference} s {value}")
+    names = list(run.inputs)
+    lines.append(f"inputs {len(names)} " + " ".join(str(variables[n].valueReference) for n in names))
+    lines.append(f"reals {len(reals)} " + " ".join(str(variables[n].valueReference) for n in reals))
+    lines.append(f"integers {len(integers)} " + " ".join(str(variables[n].valueReference) for n in integers))
+    steps = len(run.inputs[names[0]]) - 1
+    lines.append(f"steps {steps} {float_to_bits(COMMUNICATION_STEP)}")
+    for k in range(steps + 1):
+        lines.append(" ".join(float_to_bits(run.inputs[n][k]) for n in names))
+    return "\n".join(lines) + "\n"
+
+
+def float_to_bits(x):
+    return struct.pack(">d", float(x)).hex()
+
+
+def bits_to_float(text):
+    return struct.unpack(">d", bytes.fromhex(text))[0]
+
+
+# ---- comparison ----
+
+@dataclasses.dataclass
+class Comparison:
+    """Two runs' outputs compared bit for bit."""
+    variables: int
+    steps: int
+    differing: list  # names of the variables that differ somewhere
+    first: str       # the first difference (step, variable, both values), or ""
+
+    @property
+    def identical(self):
+        return not self.differing
+
+
+def compare(a, b):
+    names = sorted(a.outputs)
+    if sorted(b.outputs) != names:
+        raise ValueError(f"the runs have different outputs: {sorted(set(a.outputs) ^ set(b.outputs))}")
+    differing, first, first_step = [], "", None
+    for name in names:
+        x, y = np.asarray(a.outputs[name], dtype=float), np.asarray(b.outputs[name], dtype=float)
+        same = x.view(np.int64) == y.view(np.int64)  # (bits: NaN equals NaN, -0 differs from 0)
+        if len(x) == len(y) and same.all():
+            continue
+        differing.append(name)
+        k = int(np.argmin(same)) if len(x) == len(y) else min(len(x), len(y))
+        if first_step is None or k < first_step:
+            first_step, first = k, f"step {k}: {name} {x[k] if k < len(x) else None!r} against " \
+                                   f"{y[k] if k < len(y) else None!r}"
+    return Comparison(len(names), len(a.outputs[names[0]]) - 1, differing, first)
