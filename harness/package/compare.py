@@ -14,6 +14,7 @@ built from its sources/, the outputs of every communication step compared bit fo
 The package command prints the comparison (--compare); tests/python/package asserts it.
 """
 import argparse
+import contextlib
 import dataclasses
 import os
 import pathlib
@@ -115,15 +116,24 @@ def run_cvt(fmu_dir, duration):
 
 # ---- win64 under wine ----
 
-def use_wine(prefix):
-    """wine64 on the PATH (Debian keeps it in /usr/lib/wine), its prefix (the Windows folders) in
-    `prefix`, its own diagnostics off."""
+@contextlib.contextmanager
+def wine(prefix):
+    """wine64 ready while the block runs: on the PATH (Debian keeps it in /usr/lib/wine), its
+    prefix (the Windows folders) in `prefix`, its diagnostics off, and its server kept running
+    (wine starts and stops its server around each program otherwise, and a program started while
+    the server stops now and then does not run)."""
     if not os.path.exists(os.path.join(WINE_DIR, "wine64")):
         raise FileNotFoundError(f"{WINE_DIR}/wine64 not found: install Debian's wine64 (./run.sh test does)")
     if WINE_DIR not in os.environ["PATH"].split(os.pathsep):
         os.environ["PATH"] = WINE_DIR + os.pathsep + os.environ["PATH"]
     os.environ["WINEPREFIX"] = str(prefix)
     os.environ["WINEDEBUG"] = "-all"
+    pathlib.Path(prefix).mkdir(parents=True, exist_ok=True)
+    subprocess.run(["wineserver", "-p"], check=True)
+    try:
+        yield
+    finally:
+        subprocess.run(["wineserver", "-k"])
 
 
 def build_master(work):
@@ -149,15 +159,28 @@ def replay_on_windows(master, fmu_dir, run, work):
     scenario, outputs = pathlib.Path(work) / "scenario.txt", pathlib.Path(work) / "outputs.txt"
     scenario.write_text(scenario_text(run, variables, reals, integers))
     dll = pathlib.Path(fmu_dir) / "binaries" / "win64" / f"{md.coSimulation.modelIdentifier}.dll"
-    p = subprocess.run(["wine64", str(master), str(dll), md.guid, windows_uri(pathlib.Path(fmu_dir) / "resources"),
-                        str(scenario), str(outputs)], capture_output=True, text=True, timeout=1800)
-    log = p.stdout.splitlines()
-    if p.returncode != 0:
-        raise RuntimeError(f"fmi2_master under wine failed ({p.returncode}): {' | '.join(log[-5:])} {p.stderr[-500:]}")
+    command = ["wine64", str(master), str(dll), md.guid, windows_uri(pathlib.Path(fmu_dir) / "resources"),
+               str(scenario), str(outputs)]
+    returncode, log, errors = run_to_files(command, pathlib.Path(work) / "master")
+    if returncode != 0 and not log:
+        # (the master says why whenever it fails; no word at all means wine did not run it)
+        returncode, log, errors = run_to_files(command, pathlib.Path(work) / "master")
+    if returncode != 0:
+        raise RuntimeError(f"fmi2_master under wine failed ({returncode}): {' | '.join(log[-5:])} {errors[-500:]}")
     rows = [line.split() for line in outputs.read_text().splitlines()]
     got = {n: np.array([bits_to_float(r[i]) for r in rows]) for i, n in enumerate(reals)}
     got.update({n: np.array([int(r[len(reals) + i]) for r in rows]) for i, n in enumerate(integers)})
     return Run(run.parameters, run.inputs, got, log)
+
+
+def run_to_files(command, stem):
+    """Runs command with its output in files (stem.out, stem.err); returns (exit code, lines of
+    standard output, standard error). Files, not pipes: wine's own background processes inherit
+    the program's output and would hold a pipe open after the program ends."""
+    out, err = stem.with_suffix(".out"), stem.with_suffix(".err")
+    with open(out, "w") as o, open(err, "w") as e:
+        returncode = subprocess.run(command, stdout=o, stderr=e, timeout=1800).returncode
+    return returncode, out.read_text().splitlines(), err.read_text()
 
 
 def scenario_text(run, variables, reals, integers):

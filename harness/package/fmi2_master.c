@@ -16,6 +16,7 @@
  *
  * harness/package/compare.py builds it with zig (for win64, run under wine) and replays there
  * the inputs of a linux64 closed-loop run, so that both platforms see the same input bits. */
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +39,18 @@ static void logMessage(fmi2ComponentEnvironment env, fmi2String instance, fmi2St
   fflush(stdout);
 }
 
+/* every failure says what failed, on standard output, before the exit code 1 */
+static void fail(const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  printf("fmi2_master: ");
+  vprintf(format, args);
+  printf("\n");
+  va_end(args);
+  fflush(stdout);
+  exit(1);
+}
+
 static double fromBits(const char* token) {
   uint64_t bits = strtoull(token, NULL, 16);
   double x;
@@ -57,10 +70,7 @@ static void* symbol(void* library, const char* name) {
 #else
   void* f = dlsym(library, name);
 #endif
-  if (!f) {
-    printf("fmi2_master: %s not found\n", name);
-    exit(1);
-  }
+  if (!f) fail("%s not found", name);
   return f;
 }
 
@@ -70,34 +80,26 @@ static void* load(const char* path) {
 #else
   void* library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
 #endif
-  if (!library) {
-    printf("fmi2_master: cannot load %s\n", path);
-    exit(1);
-  }
+  if (!library) fail("cannot load %s", path);
   return library;
 }
 
 static int readCount(FILE* in, const char* keyword, int max) {
   char word[64];
   int n = -1;
-  if (fscanf(in, "%63s %d", word, &n) != 2 || strcmp(word, keyword) != 0 || n < 0 || n > max) {
-    printf("fmi2_master: scenario: expected '%s <count>'\n", keyword);
-    exit(1);
-  }
+  if (fscanf(in, "%63s %d", word, &n) != 2 || strcmp(word, keyword) != 0 || n < 0 || n > max)
+    fail("scenario: expected '%s <count>'", keyword);
   return n;
 }
 
 static void readReferences(FILE* in, const char* keyword, fmi2ValueReference* vr, int* n) {
   *n = readCount(in, keyword, MAX_VARIABLES);
   for (int i = 0; i < *n; ++i)
-    if (fscanf(in, "%u", &vr[i]) != 1) exit(1);
+    if (fscanf(in, "%u", &vr[i]) != 1) fail("scenario: a value reference expected");
 }
 
 static int check(int status, const char* what) {
-  if (status > fmi2Warning) {
-    printf("fmi2_master: %s returned %d\n", what, status);
-    exit(1);
-  }
+  if (status > fmi2Warning) fail("%s returned %d", what, status);
   return status;
 }
 
@@ -111,7 +113,7 @@ static void setParameters(void* library, fmi2Component c, FILE* in) {
   for (int i = 0; i < n; ++i) {
     fmi2ValueReference vr;
     char type[4], value[1024];
-    if (fscanf(in, "%u %3s %1023s", &vr, type, value) != 3) exit(1);
+    if (fscanf(in, "%u %3s %1023s", &vr, type, value) != 3) fail("scenario: a parameter expected");
     if (type[0] == 'r') {
       const fmi2Real x = fromBits(value);
       check(setReal(c, &vr, 1, &x), "fmi2SetReal");
@@ -129,7 +131,7 @@ static void setInputs(fmi2SetRealTYPE* setReal, fmi2Component c, FILE* in, const
   fmi2Real values[MAX_VARIABLES];
   char token[32];
   for (int i = 0; i < n; ++i) {
-    if (fscanf(in, "%31s", token) != 1) exit(1);
+    if (fscanf(in, "%31s", token) != 1) fail("scenario: an input value expected");
     values[i] = fromBits(token);
   }
   if (n > 0) check(setReal(c, vr, (size_t)n, values), "fmi2SetReal");
@@ -155,18 +157,12 @@ int main(int argc, char** argv) {
   }
   FILE* in = fopen(argv[4], "r");
   FILE* out = fopen(argv[5], "w");
-  if (!in || !out) {
-    printf("fmi2_master: cannot open %s or %s\n", argv[4], argv[5]);
-    return 1;
-  }
+  if (!in || !out) fail("cannot open %s or %s", argv[4], argv[5]);
   void* library = load(argv[1]);
   fmi2InstantiateTYPE* instantiate = (fmi2InstantiateTYPE*)symbol(library, "fmi2Instantiate");
   fmi2CallbackFunctions callbacks = {logMessage, calloc, free, NULL, NULL};
   fmi2Component c = instantiate("master", fmi2CoSimulation, argv[2], argv[3], &callbacks, fmi2False, fmi2True);
-  if (!c) {
-    printf("fmi2_master: fmi2Instantiate failed\n");
-    return 1;
-  }
+  if (!c) fail("fmi2Instantiate failed");
   /* the order of harness/fmu/fmu.py's Slave.initialize: experiment, parameters, inputs */
   check(((fmi2SetupExperimentTYPE*)symbol(library, "fmi2SetupExperiment"))(c, fmi2False, 0.0, 0.0, fmi2False, 0.0),
         "fmi2SetupExperiment");
@@ -178,7 +174,7 @@ int main(int argc, char** argv) {
   readReferences(in, "integers", intVr, &nInt);
   const int steps = readCount(in, "steps", 100000000);
   char token[32];
-  if (fscanf(in, "%31s", token) != 1) return 1;
+  if (fscanf(in, "%31s", token) != 1) fail("scenario: the step size expected");
   const double h = fromBits(token);
   fmi2SetRealTYPE* setReal = (fmi2SetRealTYPE*)symbol(library, "fmi2SetReal");
   fmi2DoStepTYPE* doStep = (fmi2DoStepTYPE*)symbol(library, "fmi2DoStep");
@@ -196,5 +192,6 @@ int main(int argc, char** argv) {
   ((fmi2FreeInstanceTYPE*)symbol(library, "fmi2FreeInstance"))(c);
   fclose(out);
   printf("fmi2_master: %d steps done\n", steps);
+  fflush(stdout);
   return 0;
 }

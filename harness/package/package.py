@@ -116,24 +116,26 @@ def compare_platforms(dist, work, jobs):
     """Prints, per FMU and method, whether the win64 binary (under wine) and the source build give
     the linux64 binary's bits at every step; returns the number of runs that do not."""
     print("\n== the same bits on every platform (every output after every 0.1 ms step)")
-    compare.use_wine(work / "wine")
-    master = compare.build_master(work)
-    unpacked, built = {}, {}
-    for fmu_id in FMUS:
-        unpacked[fmu_id] = compare.unpack(dist / f"{fmu_id}.fmu", work / fmu_id)
-        t0 = time.monotonic()
-        built[fmu_id] = compare.source_built(unpacked[fmu_id], work / f"{fmu_id}-sources", jobs)
-        print(f"   {fmu_id}: built from its sources by fmpy in {time.monotonic() - t0:.0f} s")
-    failures = 0
-    for fmu_id, method, duration in COMPARISONS:
-        run = (lambda d: compare.run_cvt(d, duration)) if fmu_id == "CVTChain" else \
-              (lambda d: compare.run_timing(d, duration, method))
-        linux = run(unpacked[fmu_id])
-        label = f"   {fmu_id}, {method or 'default method'}, {duration * 1e3:g} ms:"
-        failures += show(f"{label} win64 (wine)", lambda: compare.replay_on_windows(master, unpacked[fmu_id], linux,
-                                                                                     work), linux)
-        failures += show(f"{label} source build", lambda: run(built[fmu_id]), linux)
-    return failures
+    with compare.wine(work / "wine"):
+        master = compare.build_master(work)
+        unpacked, built = {}, {}
+        for fmu_id in FMUS:
+            unpacked[fmu_id] = compare.unpack(dist / f"{fmu_id}.fmu", work / fmu_id)
+            t0 = time.monotonic()
+            built[fmu_id] = compare.source_built(unpacked[fmu_id], work / f"{fmu_id}-sources", jobs)
+            print(f"   {fmu_id}: built from its sources by fmpy in {time.monotonic() - t0:.0f} s")
+        return sum(compare_runs(fmu_id, method, duration, unpacked[fmu_id], built[fmu_id], master, work)
+                   for fmu_id, method, duration in COMPARISONS)
+
+
+def compare_runs(fmu_id, method, duration, unpacked, built, master, work):
+    """One comparison's two lines; returns how many of them fail."""
+    run = (lambda d: compare.run_cvt(d, duration)) if fmu_id == "CVTChain" else \
+          (lambda d: compare.run_timing(d, duration, method))
+    linux = run(unpacked)
+    label = f"   {fmu_id}, {method or 'default method'}, {duration * 1e3:g} ms:"
+    return (show(f"{label} win64 (wine)", lambda: compare.replay_on_windows(master, unpacked, linux, work), linux)
+            + show(f"{label} source build", lambda: run(built), linux))
 
 
 def show(label, run_other, linux):

@@ -31,8 +31,8 @@ def dist_fmu(fmu_id):
 @pytest.fixture(scope="session")
 def work(tmp_path_factory):
     path = tmp_path_factory.mktemp("package")
-    compare.use_wine(path / "wine")
-    return path
+    with compare.wine(path / "wine"):
+        yield path
 
 
 @pytest.fixture(scope="session")
