@@ -376,7 +376,7 @@ CHAINDRIVE_ALWAYS_INLINE int plateLanes(const Model& m, Data& d, int guide, int 
 }
 
 CHAINDRIVE_TARGET_AVX2 int rollersAvx2(const Model& m, Data& d, int s, double margin, bool forces, int count,
-                                                double& power) {
+                                       double& power) {
   return rollerLanes<4>(m, d, s, margin, forces, count, power);
 }
 int rollersSse2(const Model& m, Data& d, int s, double margin, bool forces, int count, double& power) {
@@ -384,7 +384,7 @@ int rollersSse2(const Model& m, Data& d, int s, double margin, bool forces, int 
 }
 
 CHAINDRIVE_TARGET_AVX2 int platesAvx2(const Model& m, Data& d, int guide, int face, const PlacedFace& pf,
-                                               double margin, double reach, bool forces, int count, double& power) {
+                                      double margin, double reach, bool forces, int count, double& power) {
   return plateLanes<4>(m, d, guide, face, pf, margin, reach, forces, count, power);
 }
 int platesSse2(const Model& m, Data& d, int guide, int face, const PlacedFace& pf, double margin, double reach,

@@ -223,7 +223,7 @@ CHAINDRIVE_TARGET_AVX2 void dampingAvx2(const Model& m, Data& d, double a, doubl
 void dampingSse2(const Model& m, Data& d, double a, double* accel) { jointDampingLanes<2>(m, d, a, accel); }
 
 CHAINDRIVE_TARGET_AVX2 double measuresAvx2(const Model& m, const Data& d, double* tension,
-                                                    double* deformation) {
+                                           double* deformation) {
   return jointMeasureLanes<4>(m, d, tension, deformation);
 }
 double measuresSse2(const Model& m, const Data& d, double* tension, double* deformation) {
