@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "vec2.h"
+#include "math/vec2.h"
 
 namespace chaindrive {
 

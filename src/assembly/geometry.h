@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "simd.h"
-#include "vec2.h"
+#include "math/vec2.h"
 
 namespace chaindrive {
 

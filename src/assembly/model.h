@@ -11,7 +11,7 @@
 #include "assembly/chain_path.h"
 #include "description/drive_description.h"
 #include "assembly/geometry.h"
-#include "vec2.h"
+#include "math/vec2.h"
 
 namespace chaindrive {
 
@@ -87,7 +87,7 @@ struct RatioTable {
   void at(double i, double running[2], double free[2]) const;
 };
 
-/// The rocker pins between the sheaves (cvt/pin_sheave.h): each pin a bolt with linear axial
+/// The rocker pins between the sheaves (dynamics/pin_sheave.h): each pin a bolt with linear axial
 /// stiffness pressed between two cones of wedge half-angle beta.
 struct PinSheaveLaw {
   double tanWedge = 0.0, cosWedge = 1.0;  // tan and cos of beta

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "assembly/preload.h"
+#include "statics/preload.h"
 #include "description/fields.h"
 #include "cvt/cvt_outputs.h"
 #include "math/elementary.h"

@@ -6,7 +6,7 @@
 
 #include "dynamics/data.h"
 #include "assembly/model.h"
-#include "run/outputs.h"
+#include "outputs/outputs.h"
 
 namespace chaindrive {
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "vec2.h"
+#include "math/vec2.h"
 
 namespace chaindrive {
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "description/drive_description.h"
-#include "vec2.h"
+#include "math/vec2.h"
 
 namespace chaindrive {
 

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cvt/pin_sheave.h"
+#include "dynamics/pin_sheave.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/contact_lanes.h"
 #include "dynamics/link_loops.h"
-#include "sincos.h"
+#include "math/sincos.h"
 #include "math/elementary.h"
 
 namespace chaindrive {

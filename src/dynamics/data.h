@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "assembly/model.h"
-#include "vec2.h"
+#include "math/vec2.h"
 
 namespace chaindrive {
 
@@ -201,7 +201,7 @@ struct Data {
                                               // (>= 0 without a penetration)
   std::vector<double> gen;                    // (nGen) generalized forces, laid out as the
                                               // generalized coordinates (model.h)
-  // a CVT's sheaves at the ratio input (cvt/pin_sheave.h): each pulley's free and running radius
+  // a CVT's sheaves at the ratio input (dynamics/pin_sheave.h): each pulley's free and running radius
   std::vector<double> pulleyFreeRadius, pulleyRunningRadius;  // (pulleys) [m]
   // tensioner
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;

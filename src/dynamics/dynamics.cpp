@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cvt/pin_sheave.h"
+#include "dynamics/pin_sheave.h"
 #include "dynamics/body_forces.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/contact_kinematics.h"

@@ -3,7 +3,8 @@
 //
 // Stages of one evaluation at (t, y), each reading the immutable Model m and writing the work
 // area Data d (dynamics/data.h):
-//   1. inputs        InputSignal::evaluate: crankshaft speed, load torques at t  (run/inputs.h)
+//   1. inputs        InputSignal::evaluate: crankshaft speed, load torques at t
+//                    (the interface in dynamics/data.h; the signals of a run in run/inputs.h)
 //   2. kinematics    evaluateKinematics: link poses, joint points, rotor angles
 //                                                                (dynamics/contact_kinematics.h)
 //   3. joints        evaluateJoints: journal-bearing forces between neighbouring links

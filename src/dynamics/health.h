@@ -9,10 +9,16 @@
 #include <string>
 
 #include "dynamics/contact_kinematics.h"
-#include "integrators/ode_system.h"
+#include "failure.h"
 #include "assembly/model.h"
 
 namespace chaindrive {
+
+/// What counts as a physically failed state (checked after steps, reported as IntegrationError).
+struct HealthLimits {
+  double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch: blow-up
+  double tunnellingDepth = 0.5;     // a contact deeper than this fraction of the roller radius: tunnelling
+};
 
 /// True if every x[0..n) is finite: x * 0 is 0 for a finite x and NaN otherwise, summed in
 /// vectors (the check of every step and every derivative: no branch per component; AVX2 where the

@@ -10,7 +10,7 @@
 
 #include "dynamics/joint_forces.h"
 #include "simd.h"
-#include "sincos.h"
+#include "math/sincos.h"
 
 namespace chaindrive {
 

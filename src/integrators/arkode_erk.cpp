@@ -7,7 +7,7 @@
 
 #include "integrators/integrators.h"
 #include "integrators/sundials_common.h"
-#include "run/time_grid.h"
+#include "integrators/time_grid.h"
 
 namespace chaindrive {
 

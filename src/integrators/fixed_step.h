@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "integrators/ode_system.h"
-#include "run/time_grid.h"
+#include "integrators/time_grid.h"
 
 namespace chaindrive {
 

@@ -134,12 +134,6 @@ struct IntegratorStats {
   double lastStep = 0.0;
 };
 
-/// What counts as a physically failed state (checked after steps, reported as IntegrationError).
-struct HealthLimits {
-  double blowUpDeformation = 0.25;  // a joint stretched beyond this fraction of the pitch: blow-up
-  double tunnellingDepth = 0.5;     // a contact deeper than this fraction of the roller radius: tunnelling
-};
-
 class Integrator {
  public:
   virtual ~Integrator() = default;

@@ -12,7 +12,7 @@
 // ulp of the double nearest the exact value (tests/cpp/math/elementary_test.cpp, about 200000
 // samples a function over the general ranges and the solver's; in brackets the largest of 10^7
 // or more samples a range, measured once where higher):
-//   sin, cos  |x| < 2^20: src/sincos.h's sinCos, bit for bit (Cody-Waite reduction, pi/2 in three
+//   sin, cos  |x| < 2^20: src/math/sincos.h's sinCos, bit for bit (Cody-Waite reduction, pi/2 in three
 //             parts; fdlibm's kernel polynomials, the cosine without its correction term): not
 //             faithful, 1.42 on [-8, 8] and 2.0 up to 2^20 (1.55 and 2.43). sin(-0) is -0 here
 //             (sinCos gives +0). From 2^20 on: Payne-Hanek reduction (1216 bits of 2/pi) to a

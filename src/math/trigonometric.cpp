@@ -1,6 +1,6 @@
 // sin, cos and tan (src/math/elementary.h): the argument reduced to [-pi/4, pi/4] as a
 // double-double r + t, then fdlibm's kernels (FreeBSD msun k_sin.c, k_cos.c, k_tan.c) with the
-// tail t as a first-order correction. Below 2^20, sin and cos are src/sincos.h's sinCos (the hot
+// tail t as a first-order correction. Below 2^20, sin and cos are src/math/sincos.h's sinCos (the hot
 // loops' own bits); tan reduces with pi/2 in four parts. From 2^20 on, Payne-Hanek: the bits of
 // x times the bits of 2/pi that matter, in exact integer arithmetic.
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "math/double_double.h"
 #include "math/elementary.h"
-#include "sincos.h"
+#include "math/sincos.h"
 
 namespace chaindrive::math {
 namespace {

@@ -20,7 +20,7 @@
 #include "nonsmooth/formulations.h"
 #include "nonsmooth/method.h"
 #include "nonsmooth/system.h"
-#include "run/time_grid.h"
+#include "integrators/time_grid.h"
 
 namespace chaindrive::ns {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cvt/pin_sheave.h"
+#include "dynamics/pin_sheave.h"
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/health.h"

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "dynamics/data.h"
+#include "dynamics/health.h"
 #include "integrators/ode_system.h"
 #include "assembly/model.h"
 #include "nonsmooth/event_driven.h"

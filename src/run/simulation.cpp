@@ -136,7 +136,7 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
 
 namespace {
 
-// A CVT's pin-sheave contacts (cvt/pin_sheave.h) have a force law and, for time stepping, the
+// A CVT's pin-sheave contacts (dynamics/pin_sheave.h) have a force law and, for time stepping, the
 // friction as a constraint; no acceleration-level formulation (event driven), Jacobian or
 // damping rates yet, so the methods that need one are refused.
 void refuseOnPulleys(const std::string& fidelity, const std::string& contactMethod, const std::string& method) {

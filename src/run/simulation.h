@@ -7,14 +7,15 @@
 #include <vector>
 
 #include "dynamics/data.h"
+#include "dynamics/health.h"
 #include "integrators/ode_system.h"
 #include "linear/cyclic_block_tridiagonal.h"
 #include "dynamics/jacobian.h"
 #include "assembly/model.h"
-#include "run/outputs.h"
-#include "assembly/preload.h"
+#include "outputs/outputs.h"
+#include "statics/preload.h"
 #include "nonsmooth/rigid_drive.h"
-#include "run/time_grid.h"
+#include "integrators/time_grid.h"
 #include "span/span_system.h"
 
 namespace chaindrive {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "assembly/preload.h"
+#include "statics/preload.h"
 #include "span/span_system.h"
 
 namespace chaindrive::span {

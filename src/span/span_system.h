@@ -5,7 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "assembly/preload.h"
+#include "statics/preload.h"
+#include "dynamics/health.h"
 #include "integrators/ode_system.h"
 #include "span/span_dynamics.h"
 

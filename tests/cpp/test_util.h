@@ -13,7 +13,7 @@
 #include "assembly/model.h"
 #include "run/simulation.h"
 #include "dynamics/dynamics.h"
-#include "assembly/preload.h"
+#include "statics/preload.h"
 
 namespace chaindrive::test {
 

@@ -7,7 +7,7 @@
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/data.h"
 #include "dynamics/dynamics.h"
-#include "assembly/preload.h"
+#include "statics/preload.h"
 #include "test_util.h"
 
 using namespace chaindrive;

@@ -9,7 +9,7 @@
 
 #include "allocation_counter.h"
 #include "cvt/cvt_assembly.h"
-#include "cvt/pin_sheave.h"
+#include "dynamics/pin_sheave.h"
 #include "run/simulation.h"
 
 using namespace chaindrive;

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <vector>
 
-#include "assembly/preload.h"
+#include "statics/preload.h"
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/dynamics.h"
 #include "test_util.h"

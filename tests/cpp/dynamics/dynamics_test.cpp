@@ -6,7 +6,7 @@
 #include <complex>
 
 #include "dynamics/dynamics.h"
-#include "assembly/preload.h"
+#include "statics/preload.h"
 #include "test_util.h"
 
 using namespace chaindrive;

@@ -8,7 +8,7 @@
 #include "dynamics/dynamics.h"
 #include "dynamics/jacobian.h"
 #include "assembly/model.h"
-#include "assembly/preload.h"
+#include "statics/preload.h"
 #include "test_util.h"
 
 using namespace chaindrive;

@@ -4,7 +4,7 @@
 // sweep prints its largest error ("[ max ulp ]" lines: the figures of elementary.h's comment).
 #include "math/elementary.h"
 
-#include "sincos.h"
+#include "math/sincos.h"
 
 #include <gtest/gtest.h>
 
@@ -113,7 +113,7 @@ long double refTan(long double x) { return tanl(x); }
 
 // ---- sin, cos, tan ----
 
-// Below 2^20, the bits of sinCos (src/sincos.h), which is not faithful: its Cody-Waite reduction
+// Below 2^20, the bits of sinCos (src/math/sincos.h), which is not faithful: its Cody-Waite reduction
 // (pi/2 in three parts, the last a full double) loses bits for large quotients, and its cosine
 // polynomial is summed as 1 - z/2 + ... without fdlibm's correction term. Its largest errors,
 // measured once over 3 10^7 random arguments on [-8, 8] and 10^8 on [-2^20, 2^20] (uniform and

@@ -1,4 +1,4 @@
-"""One global time grid in ChainDrive.fmu (src/run/time_grid.h): the same inputs give the same bits
+"""One global time grid in ChainDrive.fmu (src/integrators/time_grid.h): the same inputs give the same bits
 whatever way a master forms its communication points and whichever importer runs the FMU; points
 off the grid are integrated to the grid point before them, with the remainder carried."""
 import numpy as np

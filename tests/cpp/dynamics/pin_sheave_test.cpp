@@ -1,4 +1,4 @@
-#include "cvt/pin_sheave.h"
+#include "dynamics/pin_sheave.h"
 
 #include <cmath>
 

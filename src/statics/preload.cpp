@@ -1,4 +1,4 @@
-#include "assembly/preload.h"
+#include "statics/preload.h"
 
 #include <chrono>
 #include <cmath>

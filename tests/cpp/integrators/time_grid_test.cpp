@@ -1,11 +1,11 @@
-// The global time grid (src/run/time_grid.h): requested times are turned into integer grid indices,
+// The global time grid (src/integrators/time_grid.h): requested times are turned into integer grid indices,
 // so that how a caller forms its times does not change which states a run reaches, nor their bits.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "test_util.h"
-#include "run/time_grid.h"
+#include "integrators/time_grid.h"
 
 using namespace chaindrive;
 using namespace chaindrive::test;

@@ -1,5 +1,5 @@
-#include "sincos.h"
-#include "vec2.h"
+#include "math/sincos.h"
+#include "math/vec2.h"
 
 #include <gtest/gtest.h>
 

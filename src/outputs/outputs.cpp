@@ -1,8 +1,8 @@
-#include "run/outputs.h"
+#include "outputs/outputs.h"
 
 #include <cmath>
 
-#include "cvt/pin_sheave.h"
+#include "dynamics/pin_sheave.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/joint_forces.h"
 
