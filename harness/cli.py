@@ -1,6 +1,6 @@
 """The command line of the harness: one entry, one subcommand per job.
 
-    python -m harness run            the main job (harness/job.py)
+    python -m harness run            the main job of a scene (harness/run.py: harness/job.py, harness/cvt/job.py)
     python -m harness sweep          speed sweeps and run-ups on Dask, Campbell diagrams (harness/sweep/sweep.py)
     python -m harness study          work-precision charts and stability map (harness/study/study.py)
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
@@ -15,10 +15,11 @@
     python -m harness package        the FMUs for download: linux64, win64, sources (harness/package/package.py)
 
 `python -m harness COMMAND --help` shows a command's options. Each command's module gives its
-options (add_arguments(parser)), optionally checks and completes them (check(parser, args),
-which reports misuse with parser.error) and runs (run(args), returning the exit status or None);
-args.argv holds the command's own arguments, for the command line that reports record. Only the
-module of the command given is imported.
+options (add_arguments(parser)), optionally checks them (check(parser, args), which reports misuse
+with parser.error and returns what run takes: the args completed, or a configuration built from
+them) and runs (run(args), returning the exit status or None); args.argv holds the command's own
+arguments, for the command line that reports record. A module's DESCRIPTION, when it has one, is
+its help's description, else its docstring. Only the module of the command given is imported.
 """
 import argparse
 import importlib
@@ -28,7 +29,7 @@ PROG = "python -m harness"
 
 # name: (module, one line of help)
 COMMANDS = {
-    "run": ("harness.job", "the main job: a scene through ChainDrive.fmu with the measured-torque tables"),
+    "run": ("harness.run", "the main job: a scene through ChainDrive.fmu with the measured-torque tables"),
     "sweep": ("harness.sweep.sweep", "speed sweeps and run-ups through ChainDrive.fmu on Dask: Campbell diagrams, "
               "order cuts, forces over speed"),
     "study": ("harness.study.study", "work-precision charts on cycle statistics and the stability map"),
@@ -59,7 +60,7 @@ def parser(command=None):
     for name, (module_name, help_line) in COMMANDS.items():
         if name == command:
             module = importlib.import_module(module_name)
-            sp = sub.add_parser(name, help=help_line, description=module.__doc__,
+            sp = sub.add_parser(name, help=help_line, description=getattr(module, "DESCRIPTION", module.__doc__),
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
             module.add_arguments(sp)
             sp.set_defaults(module=module)
@@ -78,6 +79,5 @@ def main(argv=None):
     args.argv = argv[1:]
     module = args.module
     check = getattr(module, "check", None)
-    if check is not None:
-        args = check(subparsers[command], args)
-    return module.run(args) or 0
+    checked = args if check is None else check(subparsers[command], args)
+    return module.run(checked) or 0

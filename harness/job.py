@@ -1,4 +1,4 @@
-"""The main job: a scene run through ChainDrive.fmu with the measured-torque tables.
+"""The main job of the timing drive: a scene run through ChainDrive.fmu with the measured-torque tables.
 
 Runs a drive (default: the FMU's default drive) at a mean engine speed, driven by the
 camshaft-torque and crankshaft-speed tables of harness/tables/data (synthesized, see
@@ -26,12 +26,9 @@ Two couplings:
   open              the tables turned into time series at the mean speed and passed to
                     fmpy.simulate_fmu as input.
 
-The chain CVT (--scene cvt, paper example 4.1) has a main job of its own: harness/cvt/job.py.
-
     python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in S]
                           [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
                           [--solver-step S] [--newmark-gamma G] [--drive FILE] [--out results]
-    python -m harness run --scene cvt [--rpm 2000] [--load-torque 80] [--revolutions 8] [--cvt FILE]
 
 Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
 cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.
@@ -47,7 +44,6 @@ import time
 import numpy as np
 
 from . import cycle_stats, paths
-from .cvt import job as cvt_job
 from .drive.description import drive_json, meshing_order
 from .fmu import fmu
 from .plots import drive_picture, plots
@@ -55,6 +51,7 @@ from .tables import tables
 
 RUN_IN_CYCLES = 2          # the run-in: at least this many engine cycles ...
 RUN_IN_TIME = 0.15         # [s] ... and at least this long
+DEFAULT_RPM = 3000.0       # [rpm] mean engine speed of the default run
 DEFAULT_CYCLES = 120       # counted engine cycles of the default run (see README: 1 % confidence)
 # the tables' mean speed over time (the harmonic mean of the speed over crank angle) lies up to
 # 0.2 % below the nominal speed (at 1000 rpm): 120 cycles then take a quarter of a cycle longer
@@ -67,6 +64,38 @@ SOLVER_STEP = {"link": 2.5e-6, "span": 2e-5}
 # the real-time method of the link fidelity: Verlet with the joints' damping implicit, 28 steps per
 # 0.1 ms communication step (about three quarters of its stable step; docs/benchmark_realtime.md)
 REALTIME_METHOD, REALTIME_STEP = "fixed-verlet-implicit-joint-damping", 1e-4 / 28
+COUPLINGS = ("closed", "open")  # this module's master loop (the default), fmpy.simulate_fmu
+COMMUNICATION_STEP = 1e-4  # [s] the default communication step
+DEFAULT_METHOD, DEFAULT_RTOL, NEWMARK_GAMMA = "fixed-verlet", 1e-5, 0.5  # the FMU parameters' defaults
+
+
+@dataclasses.dataclass(frozen=True)
+class RunConfig:
+    """What a run of the timing drive does, every default resolved: built once (run_config, or
+    config_of from the command line) and read, never changed, by every step of the run."""
+    run_in: int                          # engine cycles discarded before the counted ones
+    solver_step: float                   # [s] FMU parameter solver.step
+    rpm: float = DEFAULT_RPM             # [rpm] mean engine speed
+    fidelity: str = FIDELITIES[0]        # FMU parameter fidelity
+    cycles: int = DEFAULT_CYCLES         # engine cycles counted after the run-in
+    coupling: str = COUPLINGS[0]         # closed (the master loop run_closed) or open (run_open)
+    step: float = COMMUNICATION_STEP     # [s] communication step
+    method: str = DEFAULT_METHOD         # FMU parameter solver.method
+    rtol: float = DEFAULT_RTOL           # FMU parameter solver.tolerance
+    newmark_gamma: float = NEWMARK_GAMMA  # FMU parameter solver.newmarkGamma (fixed-newmark)
+    drive: str | None = None             # drive description file; None: the FMU's default drive
+    tables: str | None = None            # directory of the torque/speed tables; None: harness/tables/data
+    out: pathlib.Path = paths.RESULTS    # output directory
+
+
+def run_config(**options):
+    """A RunConfig from options named as its fields (None or left out: the default), with the
+    defaults that depend on other options: the run-in from the speed (run_in_cycles), the solver
+    step from the fidelity (SOLVER_STEP)."""
+    given = {name: value for name, value in options.items() if value is not None}
+    rpm, fidelity = given.get("rpm", DEFAULT_RPM), given.get("fidelity", FIDELITIES[0])
+    return RunConfig(**{"run_in": run_in_cycles(rpm), "solver_step": SOLVER_STEP[fidelity], **given})
+
 
 class Progress:
     """A text progress bar on stderr."""
@@ -91,11 +120,12 @@ class Progress:
             sys.stderr.write("\n")
 
 
-def parameters_of(args):
-    p = {"fidelity": args.fidelity, "solver.method": args.method, "solver.step": args.solver_step,
-         "solver.tolerance": args.rtol, "solver.newmarkGamma": args.newmark_gamma}
-    if args.drive:
-        p["driveFile"] = str(pathlib.Path(args.drive).resolve())
+def parameters_of(config):
+    """The FMU's parameters of a run."""
+    p = {"fidelity": config.fidelity, "solver.method": config.method, "solver.step": config.solver_step,
+         "solver.tolerance": config.rtol, "solver.newmarkGamma": config.newmark_gamma}
+    if config.drive:
+        p["driveFile"] = str(pathlib.Path(config.drive).resolve())
     return p
 
 
@@ -109,12 +139,13 @@ def table_inputs(torque, speed):
     return inputs
 
 
-def run_closed(args, duration, inputs, progress=True, fmu_file=None):
+def run_closed(config, duration, inputs, progress=True, fmu_file=None):
     """Master loop: inputs (table_inputs) looked up at the FMU's own angles before every step.
     fmu_file: the FMU (a file or an unpacked folder; default the build's). Returns (record, CPU
     seconds spent inside each fmi2DoStep)."""
-    s = fmu.Slave("chaindrive", fmu=fmu_file, parameters=parameters_of(args))
-    n = int(round(duration / args.step))
+    s = fmu.Slave("chaindrive", fmu=fmu_file, parameters=parameters_of(config))
+    step = config.step
+    n = int(round(duration / step))
     u0 = inputs(0.0, 0.0, 0.0, 0.0)
     with fmu_messages(s):
         s.initialize(inputs=u0)
@@ -124,15 +155,15 @@ def run_closed(args, duration, inputs, progress=True, fmu_file=None):
     for k in range(n):
         o = s.get(["crankshaft.phi", "camshaftIntake.phi", "camshaftExhaust.phi"])
         # camshafts turn at half the crankshaft speed; the tables are over crank angle
-        u = inputs(k * args.step, math.degrees(o["crankshaft.phi"]), 2.0 * math.degrees(o["camshaftIntake.phi"]),
+        u = inputs(k * step, math.degrees(o["crankshaft.phi"]), 2.0 * math.degrees(o["camshaftIntake.phi"]),
                    2.0 * math.degrees(o["camshaftExhaust.phi"]))
         with fmu_messages(s):
-            s.step(args.step, inputs=u, t=k * args.step)
+            s.step(step, inputs=u, t=k * step)
         v = s.get(names)
-        rows.append([(k + 1) * args.step] + [v[x] for x in names] + [u["crankshaft.w"], u["camshaftIntake.tau"],
-                                                                    u["camshaftExhaust.tau"]])
+        rows.append([(k + 1) * step] + [v[x] for x in names] + [u["crankshaft.w"], u["camshaftIntake.tau"],
+                                                               u["camshaftExhaust.tau"]])
         if prog:
-            prog.update((k + 1) * args.step)
+            prog.update((k + 1) * step)
     if prog:
         prog.done()
     s.close()
@@ -159,19 +190,19 @@ def speed_at(speed, crank_deg):
     return v * 2.0 * math.pi / 60.0 if col.endswith("_rpm") else v
 
 
-def run_open(args, duration, torque, speed):
+def run_open(config, duration, torque, speed):
     """fmpy.simulate_fmu with the tables as time series. Returns (record, None): fmpy's loop does
     not tell the time spent inside fmi2DoStep."""
     from fmpy import simulate_fmu
-    ts = tables.time_series(args.rpm, duration, min(2e-5, args.step), torque_table=torque, speed_table=speed)
+    ts = tables.time_series(config.rpm, duration, min(2e-5, config.step), torque_table=torque, speed_table=speed)
     names = ["crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau"]
     arr = np.zeros(len(ts["time"]), dtype=[("time", float)] + [(n, float) for n in names])
     arr["time"] = ts["time"]
     for n in names:
         arr[n] = ts[n]
     prog = Progress(duration, "open loop")
-    res = simulate_fmu(str(fmu.fmu_path()), stop_time=duration, output_interval=args.step, input=arr,
-                       start_values=parameters_of(args), step_finished=lambda t, rec: prog.update(t))
+    res = simulate_fmu(str(fmu.fmu_path()), stop_time=duration, output_interval=config.step, input=arr,
+                       start_values=parameters_of(config), step_finished=lambda t, rec: prog.update(t))
     prog.done()
     out = {n: np.asarray(res[n], dtype=float) for n in res.dtype.names}
     for n in names:
@@ -186,71 +217,32 @@ def write_csv(path, d):
         np.savetxt(f, np.column_stack([d[c] for c in cols]), delimiter=",", fmt="%.10g")
 
 
-SCENES = ("timing", "cvt")  # the roller-chain timing drive (this module), the chain CVT (harness/cvt/job.py)
-
-
 def add_arguments(ap):
-    ap.add_argument("--scene", choices=SCENES, default="timing",
-                    help="timing: the roller-chain timing drive through ChainDrive.fmu (default); cvt: the chain CVT "
-                    "(paper example 4.1, harness/cvt/job.py)")
+    """The timing drive's own options; those it shares with the CVT (--rpm, --method, --solver-step,
+    --rtol, --out) are harness/run.py's."""
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
-    ap.add_argument("--rpm", type=float, help="mean engine speed [rpm], 1000-6000 (tables; default 3000); cvt: the "
-                    f"driving-pulley speed (default {cvt_job.DEFAULT_RPM:g})")
-    ap.add_argument("--cvt", help="cvt: the CVT description (default: the embedded default CVT)")
-    ap.add_argument("--load-torque", type=float, default=cvt_job.DEFAULT_LOAD,
-                    help=f"cvt: the load torque on the driven pulley [N m] (default {cvt_job.DEFAULT_LOAD:g})")
-    ap.add_argument("--revolutions", type=int, default=cvt_job.DEFAULT_REVOLUTIONS,
-                    help=f"cvt: chain revolutions counted after the run-in (default {cvt_job.DEFAULT_REVOLUTIONS})")
-    ap.add_argument("--run-in-revolutions", type=int, default=cvt_job.RUN_IN_REVOLUTIONS,
-                    help=f"cvt: chain revolutions discarded first (default {cvt_job.RUN_IN_REVOLUTIONS})")
-    ap.add_argument("--fidelity", choices=FIDELITIES, default="link",
+    ap.add_argument("--fidelity", choices=FIDELITIES, default=FIDELITIES[0],
                     help="FMU parameter fidelity: link (link-by-link model, default) or span (span model)")
     ap.add_argument("--cycles", type=int, default=DEFAULT_CYCLES,
                     help=f"engine cycles (720 deg crank) counted after the run-in (default {DEFAULT_CYCLES})")
     ap.add_argument("--run-in", type=int, help=f"engine cycles discarded before the first counted one (default: "
                     f"at least {RUN_IN_CYCLES} and at least {RUN_IN_TIME:g} s)")
-    ap.add_argument("--coupling", choices=("closed", "open"), default="closed")
+    ap.add_argument("--coupling", choices=COUPLINGS, default=COUPLINGS[0])
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
-    ap.add_argument("--step", type=float, default=1e-4, help="communication step [s]")
-    ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")
-    ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: "
-                    + ", ".join(f"{f} {h:g}" for f, h in SOLVER_STEP.items()) + ")")
-    ap.add_argument("--rtol", type=float, default=1e-5, help="FMU parameter solver.tolerance")
-    ap.add_argument("--newmark-gamma", type=float, default=0.5, help="FMU parameter solver.newmarkGamma (fixed-newmark)")
-    ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
+    ap.add_argument("--step", type=float, default=COMMUNICATION_STEP, help="communication step [s]")
+    ap.add_argument("--newmark-gamma", type=float, default=NEWMARK_GAMMA,
+                    help="FMU parameter solver.newmarkGamma (fixed-newmark)")
 
 
-def check(ap, args):
-    if args.scene == "cvt":
-        return check_cvt(ap, args)
-    if args.rpm is None:
-        args.rpm = 3000.0
+def config_of(ap, args):
+    """The run's configuration from the command line's options (harness/run.py; the shared ones None
+    where not given); misuse reported by ap.error."""
     if args.cycles < 2:
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
     if args.run_in is not None and args.run_in < 0:
         ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
-    if args.solver_step is None:
-        args.solver_step = SOLVER_STEP[args.fidelity]
-    return args
-
-
-def check_cvt(ap, args):
-    """The CVT's options: the timing drive's that do not apply are refused, the defaults its own."""
-    for option, value, default in (("--drive", args.drive, None), ("--fidelity", args.fidelity, "link"),
-                                   ("--coupling", args.coupling, "closed"), ("--tables", args.tables, None)):
-        if value != default:
-            ap.error(f"{option} {value}: does not apply to the CVT scene (solver alone, link fidelity)")
-    if args.revolutions < 2:
-        ap.error(f"--revolutions {args.revolutions}: at least 2 counted revolutions are needed for a confidence interval")
-    if args.run_in_revolutions < 0:
-        ap.error(f"--run-in-revolutions {args.run_in_revolutions}: must be >= 0")
-    if args.rpm is None:
-        args.rpm = cvt_job.DEFAULT_RPM
-    if not 0.0 < args.rpm <= 10000.0:
-        ap.error(f"--rpm {args.rpm:g}: the driving speed must lie in (0, 10000] rpm")
-    if args.solver_step is None:
-        args.solver_step = cvt_job.DEFAULT_STEP
-    return args
+    options = {field.name: getattr(args, field.name) for field in dataclasses.fields(RunConfig)}
+    return run_config(**dict(options, out=pathlib.Path(args.out)))
 
 
 SHOWN_CYCLES = 4  # counted cycles shown in the time histories after the run-in
@@ -258,16 +250,18 @@ CYCLE_PLOT_KEYS = ("tensioner.F.mean", "tensioner.F.peakToPeak", "tensionGuide.p
                    "tensioner.F.order2", "tensioner.F.order8")
 
 
-def write_plots(out, d, args, t0, per_cycle, summary):
-    title = f"{args.rpm:g} rpm, {args.fidelity} fidelity, {args.coupling} loop, {args.method}"
-    drive_picture.drive_picture(out / "drive.png", args.drive)
-    plots.time_histories(out / "time_histories.png", d, args.rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)",
-                         t_end=t0 + SHOWN_CYCLES * 120.0 / args.rpm, t_counted=t0)
+def write_plots(out, d, config, t0, per_cycle, summary):
+    """The plots of a run into out (counted cycles from t0); returns their files."""
+    rpm = config.rpm
+    title = f"{rpm:g} rpm, {config.fidelity} fidelity, {config.coupling} loop, {config.method}"
+    drive_picture.drive_picture(out / "drive.png", config.drive)
+    plots.time_histories(out / "time_histories.png", d, rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)",
+                         t_end=t0 + SHOWN_CYCLES * 120.0 / rpm, t_counted=t0)
     plots.cycle_statistics(out / "cycle_statistics.png", per_cycle, summary, title + ", per engine cycle",
                            CYCLE_PLOT_KEYS)
-    plots.spectra(out / "spectra.png", d, args.rpm, t0, title + " (counted cycles)")
-    plots.link_cycle(out / "link_cycle.png", d, args.rpm, title + ", one cycle of the monitored link", t0=t0,
-                     drive=args.drive)
+    plots.spectra(out / "spectra.png", d, rpm, t0, title + " (counted cycles)")
+    plots.link_cycle(out / "link_cycle.png", d, rpm, title + ", one cycle of the monitored link", t0=t0,
+                     drive=config.drive)
     return [out / n for n in ("drive.png", "time_histories.png", "cycle_statistics.png", "spectra.png",
                               "link_cycle.png")]
 
@@ -291,43 +285,46 @@ class SceneRun:
         """[s] CPU time inside fmi2DoStep over the run (None in open loop)."""
         return None if self.step_cpus is None else math.fsum(self.step_cpus)
 
-    def cost(self, args):
-        """What ran and its cost (run.json): CPU seconds per simulated second of the loop and of
-        fmi2DoStep alone (the FMU's own cost; None in open loop)."""
+    def cost(self, config):
+        """What ran (config) and its cost (run.json): CPU seconds per simulated second of the loop
+        and of fmi2DoStep alone (the FMU's own cost; None in open loop)."""
         per_s = None if self.step_cpu is None else self.step_cpu / self.duration
-        return {"fidelity": args.fidelity, "rpm": args.rpm, "drive": args.drive, "coupling": args.coupling,
-                "method": args.method, "solverStep_s": args.solver_step, "communicationStep_s": args.step,
-                "runInCycles": self.run_in, "cycles": args.cycles, "simulated_s": self.duration, "cpu_s": self.cpu,
+        return {"fidelity": config.fidelity, "rpm": config.rpm, "drive": config.drive, "coupling": config.coupling,
+                "method": config.method, "solverStep_s": config.solver_step, "communicationStep_s": config.step,
+                "runInCycles": self.run_in, "cycles": config.cycles, "simulated_s": self.duration, "cpu_s": self.cpu,
                 "doStepCpu_s": self.step_cpu, "cpuPerSimulatedSecond": self.cpu / self.duration,
                 "doStepCpuPerSimulatedSecond": per_s}
 
 
-def simulate(args, progress=True):
-    """Runs the scene of args (the options of this command, checked) through ChainDrive.fmu over
-    the run-in and the counted cycles; prints what runs (and a progress bar when progress)."""
-    cycle = 2.0 * 60.0 / args.rpm
-    run_in = args.run_in if args.run_in is not None else run_in_cycles(args.rpm)
-    # a tenth of a cycle and SPEED_MARGIN more, so that the last counted cycle is complete with the
-    # speed fluctuation
-    duration = ((run_in + args.cycles) * (1.0 + SPEED_MARGIN) + 0.1) * cycle
-    torque = tables.camshaft_torque(args.rpm, args.tables)
-    speed = tables.crankshaft_speed(args.rpm, args.tables)
-    print(f"ChainDrive.fmu, {args.fidelity} fidelity: {args.drive or 'default drive'}, {args.rpm:g} rpm, run-in "
-          f"{run_in} + {args.cycles} engine cycles ({duration * 1e3:.1f} ms), {args.coupling}-loop coupling, "
-          f"communication step {args.step * 1e6:g} us, {args.method} at {args.solver_step * 1e6:g} us")
+def duration_of(config):
+    """[s] simulated: the run-in and the counted cycles, a tenth of a cycle and SPEED_MARGIN more so
+    that the last counted cycle is complete with the speed fluctuation."""
+    cycle = 2.0 * 60.0 / config.rpm
+    return ((config.run_in + config.cycles) * (1.0 + SPEED_MARGIN) + 0.1) * cycle
+
+
+def simulate(config, progress=True):
+    """Runs the timing drive through ChainDrive.fmu over the run-in and the counted cycles; prints
+    what runs (and a progress bar when progress)."""
+    duration = duration_of(config)
+    torque = tables.camshaft_torque(config.rpm, config.tables)
+    speed = tables.crankshaft_speed(config.rpm, config.tables)
+    print(f"ChainDrive.fmu, {config.fidelity} fidelity: {config.drive or 'default drive'}, {config.rpm:g} rpm, run-in "
+          f"{config.run_in} + {config.cycles} engine cycles ({duration * 1e3:.1f} ms), {config.coupling}-loop "
+          f"coupling, communication step {config.step * 1e6:g} us, {config.method} at {config.solver_step * 1e6:g} us")
     print(f"tables: {torque.path} ({torque.provenance})")
     cpu0 = time.process_time()
-    if args.coupling == "closed":
-        d, step_cpus = run_closed(args, duration, table_inputs(torque, speed), progress)
+    if config.coupling == "closed":
+        d, step_cpus = run_closed(config, duration, table_inputs(torque, speed), progress)
     else:
-        d, step_cpus = run_open(args, duration, torque, speed)
-    return SceneRun(d, run_in, duration, time.process_time() - cpu0, step_cpus)
+        d, step_cpus = run_open(config, duration, torque, speed)
+    return SceneRun(d, config.run_in, duration, time.process_time() - cpu0, step_cpus)
 
 
-def cycle_statistics(args, scene_run):
+def cycle_statistics(config, scene_run):
     """(per-cycle values, summary) of the counted cycles of a scene run (harness/cycle_stats.py)."""
-    per_cycle = cycle_stats.per_cycle(scene_run.record, scene_run.run_in, meshing_order(drive_json(args.drive)),
-                                      args.cycles)
+    per_cycle = cycle_stats.per_cycle(scene_run.record, scene_run.run_in, meshing_order(drive_json(config.drive)),
+                                      config.cycles)
     return per_cycle, cycle_stats.summarize(per_cycle)
 
 
@@ -358,20 +355,18 @@ def report(summary, scene_run):
               f"simulated s (the FMU alone)")
 
 
-def run(args):
-    if args.scene == "cvt":
-        args.out_path = pathlib.Path(args.out)
-        return cvt_job.run(args)
-    out = pathlib.Path(args.out)
+def run(config):
+    """The main job of the timing drive: the run, its outputs, statistics and plots in config.out."""
+    out = config.out
     out.mkdir(parents=True, exist_ok=True)
-    scene_run = simulate(args)
+    scene_run = simulate(config)
     csv = out / "outputs.csv"
     write_csv(csv, scene_run.record)
-    per_cycle, summary = cycle_statistics(args, scene_run)
-    write_summary(out, summary, scene_run.cost(args))
+    per_cycle, summary = cycle_statistics(config, scene_run)
+    write_summary(out, summary, scene_run.cost(config))
     d = scene_run.record
     t0 = d["time"][cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[0][0]]
-    pictures = write_plots(out, d, args, t0, per_cycle, summary)
+    pictures = write_plots(out, d, config, t0, per_cycle, summary)
     report(summary, scene_run)
     print(f"  outputs: {csv}, {out / 'summary.json'}, {out / 'run.json'}")
     print("  plots: " + ", ".join(str(p) for p in pictures))

@@ -33,7 +33,6 @@ the solver alone, plain Verlet at 2.5 us, 3000 rpm; the CPU of a 0.3 s run minus
 run, so the start drops out; median of HOST_REPEATS), as CPU s per simulated s and ns per link and step: RTFs
 of different hosts compare through it.
 """
-import argparse
 import json
 import pathlib
 import tempfile
@@ -89,14 +88,10 @@ def check(ap, args):
     return args
 
 
-def scene_args(args, rpm):
-    """The main job's options at one speed."""
-    ap = argparse.ArgumentParser(prog="python -m harness run")
-    job.add_arguments(ap)
-    argv = ["--rpm", repr(rpm), "--cycles", str(args.cycles), "--method", args.method,
-            "--newmark-gamma", repr(args.newmark_gamma)]
-    argv += ["--solver-step", repr(args.solver_step)] if args.solver_step else []
-    return job.check(ap, ap.parse_args(argv))
+def scene_config(args, rpm):
+    """The main job's configuration at one speed (no --solver-step: the fidelity's default)."""
+    return job.run_config(rpm=rpm, cycles=args.cycles, method=args.method, newmark_gamma=args.newmark_gamma,
+                          solver_step=args.solver_step or None)
 
 
 def spread(cpu):
@@ -198,17 +193,17 @@ def run(args):
              host_line(*host_speed()), ""]
     print("\n".join(lines))
     for rpm in args.rpm:
-        a = scene_args(args, rpm)
-        scene_runs = [job.simulate(a) for _ in range(args.repeats)]
+        config = scene_config(args, rpm)
+        scene_runs = [job.simulate(config) for _ in range(args.repeats)]
         if (message := difference(scene_runs)) is not None:
             print(f"error at {rpm:g} rpm: {message}")
             return 1
         scene_run = scene_runs[0]
-        _, summary = job.cycle_statistics(a, scene_run)
-        section = [f"## {rpm:g} rpm: {a.method} at {a.solver_step * 1e6:g} us, closed loop, {args.cycles} cycles "
-                   f"after {scene_run.run_in} run-in", ""]
-        steps_per_cycle = round(120.0 / rpm / a.step)  # (an engine cycle: two crank revolutions)
-        section += timing_lines(rpm, timing(scene_runs, steps_per_cycle), a.step) + [""]
+        _, summary = job.cycle_statistics(config, scene_run)
+        section = [f"## {rpm:g} rpm: {config.method} at {config.solver_step * 1e6:g} us, closed loop, {args.cycles} "
+                   f"cycles after {scene_run.run_in} run-in", ""]
+        steps_per_cycle = round(120.0 / rpm / config.step)  # (an engine cycle: two crank revolutions)
+        section += timing_lines(rpm, timing(scene_runs, steps_per_cycle), config.step) + [""]
         reference = args.references.get(rpm)
         if reference:
             section += accuracy_lines(reference, summary) + [""]

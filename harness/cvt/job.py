@@ -12,12 +12,17 @@ confidence half-width (harness/cycle_stats.interval), with the checks of a stati
   energy        input minus output work against the energy dissipated (in the chain's joints, the
                 pins' axial damping and the friction), over the counted revolutions
 
+    python -m harness run --scene cvt [--rpm 2000] [--load-torque 80] [--revolutions 8] [--cvt FILE]
+                                      [--run-in-revolutions 24] [--method fixed-verlet] [--solver-step 5e-7]
+
 Writes to --out: cvt_outputs.csv (every output step), cvt_summary.json (the statistics, the
 checks, the assembly and the cost) and the plots: the paper's Figure 9 for one pin over one chain
 revolution (cvt_figure9.png) and the time histories (cvt_time_histories.png).
 """
+import dataclasses
 import json
 import math
+import pathlib
 import subprocess
 
 import numpy as np
@@ -34,8 +39,15 @@ DEFAULT_REVOLUTIONS = 8     # counted chain revolutions
 # the power loss 189 -> 157 W; measured per revolution) while the pins settle radially against
 # their friction; stationary after that (per-revolution values within 0.2 %)
 RUN_IN_REVOLUTIONS = 24
+DEFAULT_METHOD = "fixed-verlet"
 DEFAULT_STEP = 5e-7         # [s] fixed-verlet: the energy balance within 0.3 % (1 us: 0.7 %, 2 us: 22 %)
+DEFAULT_RTOL = 1e-5         # the adaptive methods' relative tolerance
+MAX_RPM = 10000.0           # the driving speeds accepted lie in (0, MAX_RPM]
 OUTPUT_STEP = 5e-5          # [s]
+# the timing drive's options (harness/job.py) with their defaults: the CVT's run (the solver alone,
+# link fidelity) has no use for them, so they are refused when set
+TIMING_OPTIONS = (("--drive", "drive", None), ("--fidelity", "fidelity", "link"), ("--coupling", "coupling", "closed"),
+                  ("--tables", "tables", None))
 
 # per-revolution quantities: (CSV column, unit)
 QUANTITIES = {"slip": ("slip", ""), "drivenSpeed": ("drivenSpeed", "rad/s"),
@@ -44,27 +56,85 @@ QUANTITIES = {"slip": ("slip", ""), "drivenSpeed": ("drivenSpeed", "rad/s"),
               "drivingTorque": ("drivingTorque", "N m"), "drivenTorque": ("drivenTorque", "N m")}
 
 
-def simulate(args, out, quiet=False):
-    """Runs chaindrive-cvt over the run-in and the counted revolutions; returns (record, its JSON).
-    A failed run raises RuntimeError with the solver's message."""
-    csv = out / "cvt_outputs.csv"
-    revolutions = args.run_in_revolutions + args.revolutions
-    if not quiet:
-        print(f"chaindrive-cvt: {args.cvt or 'default CVT'}, {args.rpm:g} rpm driving, load torque "
-              f"{args.load_torque:g} N m, run-in {args.run_in_revolutions} + {args.revolutions} chain revolutions, "
-              f"{args.method} at {args.solver_step * 1e6:g} us")
+@dataclasses.dataclass(frozen=True)
+class CVTConfig:
+    """What a run of the CVT does, every default resolved: built once (config_of from the command
+    line, or by the study) and read, never changed, by the run."""
+    rpm: float = DEFAULT_RPM                # [rpm] driving-pulley speed
+    load_torque: float = DEFAULT_LOAD       # [N m] on the driven pulley
+    revolutions: int = DEFAULT_REVOLUTIONS  # chain revolutions counted after the run-in
+    run_in_revolutions: int = RUN_IN_REVOLUTIONS  # chain revolutions discarded first
+    method: str = DEFAULT_METHOD            # chaindrive-cvt's integration method
+    solver_step: float = DEFAULT_STEP       # [s] its step (the adaptive methods: their largest)
+    rtol: float = DEFAULT_RTOL
+    cvt: str | None = None                  # CVT description file; None: the embedded default CVT
+    out: pathlib.Path = paths.RESULTS       # output directory
+    # the study's (harness/study/cvt.py): time stepping's friction polygon, a run continued from a
+    # saved state or saving its last
+    friction_facets: int | None = None
+    state_in: pathlib.Path | None = None
+    state_out: pathlib.Path | None = None
+
+
+# the fields of CVTConfig the command line sets (besides --out), named as its options' destinations
+COMMAND_LINE_FIELDS = ("rpm", "load_torque", "revolutions", "run_in_revolutions", "method", "solver_step", "rtol",
+                       "cvt")
+
+
+def add_arguments(ap):
+    """The CVT's own options; those it shares with the timing drive (--rpm, --method,
+    --solver-step, --rtol, --out) are harness/run.py's."""
+    ap.add_argument("--cvt", help="cvt: the CVT description (default: the embedded default CVT)")
+    ap.add_argument("--load-torque", type=float, default=DEFAULT_LOAD,
+                    help=f"cvt: the load torque on the driven pulley [N m] (default {DEFAULT_LOAD:g})")
+    ap.add_argument("--revolutions", type=int, default=DEFAULT_REVOLUTIONS,
+                    help=f"cvt: chain revolutions counted after the run-in (default {DEFAULT_REVOLUTIONS})")
+    ap.add_argument("--run-in-revolutions", type=int, default=RUN_IN_REVOLUTIONS,
+                    help=f"cvt: chain revolutions discarded first (default {RUN_IN_REVOLUTIONS})")
+
+
+def config_of(ap, args):
+    """The run's configuration from the command line's options (harness/run.py; the shared ones None
+    where not given): the timing drive's options refused when set, misuse reported by ap.error."""
+    for option, name, default in TIMING_OPTIONS:
+        if getattr(args, name) != default:
+            ap.error(f"{option} {getattr(args, name)}: does not apply to the CVT scene (solver alone, link fidelity)")
+    if args.revolutions < 2:
+        ap.error(f"--revolutions {args.revolutions}: at least 2 counted revolutions are needed for a confidence "
+                 "interval")
+    if args.run_in_revolutions < 0:
+        ap.error(f"--run-in-revolutions {args.run_in_revolutions}: must be >= 0")
+    if args.rpm is not None and not 0.0 < args.rpm <= MAX_RPM:
+        ap.error(f"--rpm {args.rpm:g}: the driving speed must lie in (0, {MAX_RPM:g}] rpm")
+    given = {name: getattr(args, name) for name in COMMAND_LINE_FIELDS if getattr(args, name) is not None}
+    return CVTConfig(out=pathlib.Path(args.out), **given)
+
+
+def command(config, csv):
+    """The chaindrive-cvt command line of a run writing its outputs to csv."""
+    revolutions = config.run_in_revolutions + config.revolutions
     # (chaindrive-cvt simulates the revolutions and an output step more: the last one's end on the grid)
-    cmd = [paths.executable("chaindrive-cvt"), "--rpm", repr(args.rpm), "--load-torque", repr(args.load_torque),
-           "--revolutions", repr(float(revolutions)), "--output-step", repr(OUTPUT_STEP), "--method", args.method,
-           "--step", repr(args.solver_step), "--rtol", repr(args.rtol), "--csv", str(csv)]
-    if args.cvt:
-        cmd += ["--cvt", args.cvt]
-    # (the study's: time stepping's friction polygon, a run continued from a saved state)
-    for option, attribute in (("--friction-facets", "friction_facets"), ("--state-in", "state_in"),
-                              ("--state-out", "state_out")):
-        if getattr(args, attribute, None) is not None:
-            cmd += [option, str(getattr(args, attribute))]
-    done = subprocess.run(cmd, capture_output=True, text=True)
+    cmd = [paths.executable("chaindrive-cvt"), "--rpm", repr(config.rpm), "--load-torque", repr(config.load_torque),
+           "--revolutions", repr(float(revolutions)), "--output-step", repr(OUTPUT_STEP), "--method", config.method,
+           "--step", repr(config.solver_step), "--rtol", repr(config.rtol), "--csv", str(csv)]
+    if config.cvt:
+        cmd += ["--cvt", config.cvt]
+    for option, value in (("--friction-facets", config.friction_facets), ("--state-in", config.state_in),
+                          ("--state-out", config.state_out)):
+        if value is not None:
+            cmd += [option, str(value)]
+    return cmd
+
+
+def simulate(config, quiet=False):
+    """Runs chaindrive-cvt over the run-in and the counted revolutions, its outputs into config.out;
+    returns (record, its JSON). A failed run raises RuntimeError with the solver's message."""
+    csv = config.out / "cvt_outputs.csv"
+    if not quiet:
+        print(f"chaindrive-cvt: {config.cvt or 'default CVT'}, {config.rpm:g} rpm driving, load torque "
+              f"{config.load_torque:g} N m, run-in {config.run_in_revolutions} + {config.revolutions} chain "
+              f"revolutions, {config.method} at {config.solver_step * 1e6:g} us")
+    done = subprocess.run(command(config, csv), capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"chaindrive-cvt failed: {done.stderr.strip()}")
     result = json.loads(done.stdout)
@@ -119,18 +189,19 @@ def report(summary, check, result, cpu_per_revolution):
     print(f"  CPU {cpu_per_revolution:.3g} s per chain revolution ({result['run']['cpuSeconds']:.2f} s in all)")
 
 
-def run(args):
-    out = args.out_path
+def run(config):
+    """The main job of the CVT: the run, its statistics, checks and plots in config.out."""
+    out = config.out
     out.mkdir(parents=True, exist_ok=True)
-    record, result = simulate(args, out)
+    record, result = simulate(config)
     revolution = result["run"]["chainRevolution"]
-    spans = revolution_spans(record["time"], revolution, args.run_in_revolutions)
+    spans = revolution_spans(record["time"], revolution, config.run_in_revolutions)
     summary = cycle_stats.summarize(per_revolution(record, spans))
     check = checks(summary, result)
     cpu_per_revolution = result["run"]["cpuPerChainRevolution"]
     (out / "cvt_summary.json").write_text(json.dumps({"statistics": summary, "checks": check, "assembly":
                                                       result["assembly"], "run": result["run"]}, indent=1) + "\n")
-    title = f"{args.rpm:g} rpm, {args.load_torque:g} N m, {args.method} at {args.solver_step * 1e6:g} us"
+    title = f"{config.rpm:g} rpm, {config.load_torque:g} N m, {config.method} at {config.solver_step * 1e6:g} us"
     pictures = [plots.figure9(out / "cvt_figure9.png", record, spans[-1], title),
                 plots.time_histories(out / "cvt_time_histories.png", record, spans[0][0], title)]
     report(summary, check, result, cpu_per_revolution)

@@ -13,7 +13,6 @@ built from its sources/, the outputs of every communication step compared bit fo
   source FMU), run as linux64 is.
 The package command prints the comparison (--compare); tests/python/package asserts it.
 """
-import argparse
 import contextlib
 import dataclasses
 import os
@@ -87,17 +86,15 @@ def model_identifier(fmu_dir):
 def run_timing(fmu_dir, duration, method=None):
     """ChainDrive in closed loop with the measured-torque tables at 3000 rpm, the main job's
     options and master loop (default method unless `method`)."""
-    ap = argparse.ArgumentParser()
-    job.add_arguments(ap)
-    args = job.check(ap, ap.parse_args(["--rpm", str(TIMING_RPM)] + (["--method", method] if method else [])))
-    inputs = job.table_inputs(tables.camshaft_torque(args.rpm, None), tables.crankshaft_speed(args.rpm, None))
-    record, _ = job.run_closed(args, duration, inputs, progress=False, fmu_file=fmu_dir)
+    config = job.run_config(rpm=TIMING_RPM, method=method or None)
+    inputs = job.table_inputs(tables.camshaft_torque(config.rpm, None), tables.crankshaft_speed(config.rpm, None))
+    record, _ = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
     # (the record's inputs of row 0 are those of the initialization, looked up at zero angles)
     applied = {name: np.array(record[f"input.{name}"]) for name in fmu.INPUTS}
     for name, value in inputs(0.0, 0.0, 0.0, 0.0).items():
         applied[name][0] = value
     outputs = {k: v for k, v in record.items() if k != "time" and not k.startswith("input.")}
-    return Run(job.parameters_of(args), applied, outputs)
+    return Run(job.parameters_of(config), applied, outputs)
 
 
 def run_cvt(fmu_dir, duration):

@@ -74,27 +74,26 @@ FRICTION_LIMIT = ((0.005, 2.5e-7), (0.002, 1e-7), (0.001, 5e-8))
 TORQUE_LIMIT, ENERGY_LIMIT = 0.02, 0.01
 
 
-class Options:
-    """What chaindrive-cvt needs of the main job's options (harness/cvt/job.py), and the study's own
-    (time stepping's facets, a handover state to start from or to write, another CVT file)."""
-
-    def __init__(self, method, setting, revolutions, run_in, **extra):
-        self.rpm, self.load_torque, self.cvt = RPM, LOAD, extra.get("cvt")
-        self.friction_facets, self.state_in, self.state_out = (extra.get(k) for k in ("facets", "state_in", "state_out"))
-        self.method, self.revolutions, self.run_in_revolutions = method, revolutions, run_in
-        adaptive = method.startswith("arkode-erk") and method != "arkode-erk-fixed"
-        self.solver_step = 1e-4 if adaptive else setting  # (arkode-erk: its largest step)
-        self.rtol = setting if adaptive else 1e-5
+def point_config(method, setting, revolutions, run_in, out, **extra):
+    """The CVT job's configuration of one point (harness/cvt/job.py) at the study's speed and load,
+    with the study's own extras (time stepping's facets, a handover state to start from or to
+    write, another CVT file). setting: the step, or the tolerance of an adaptive method."""
+    adaptive = method.startswith("arkode-erk") and method != "arkode-erk-fixed"
+    return cvt_job.CVTConfig(rpm=RPM, load_torque=LOAD, revolutions=revolutions, run_in_revolutions=run_in,
+                             method=method, solver_step=1e-4 if adaptive else setting,  # (arkode-erk: its largest)
+                             rtol=setting if adaptive else 1e-5, cvt=extra.get("cvt"), out=out,
+                             friction_facets=extra.get("facets"), state_in=extra.get("state_in"),
+                             state_out=extra.get("state_out"))
 
 
 def run_point(method, setting, revolutions, run_in, out, counted_from=None, **extra):
     """One run: {method, setting, cpuPerRevolution, statistics, checks} or {..., failure}. The
     counted revolutions start at revolution `counted_from` (default: run_in) from time 0."""
-    opt = Options(method, setting, revolutions, run_in, **extra)
+    config = point_config(method, setting, revolutions, run_in, out, **extra)
     point = {"method": method, "setting": setting}
     point.update({k: extra[k] for k in ("facets", "vReg") if k in extra})
     try:
-        record, result = cvt_job.simulate(opt, out, quiet=True)
+        record, result = cvt_job.simulate(config, quiet=True)
     except RuntimeError as e:
         point["failure"] = str(e).replace("chaindrive-cvt failed: chaindrive-cvt: ", "")
         return point
@@ -114,7 +113,7 @@ def handover_points(out, run_in, quick, log):
     state = out / "cvt_handover_state.json"
     method, step = REFERENCE[0], (1e-6 if quick else REFERENCE[1])
     log(f"CVT handover state: {method} at {step:g} over the run-in of {run_in} revolutions")
-    cvt_job.simulate(Options(method, step, 0, run_in, state_out=state), out, quiet=True)
+    cvt_job.simulate(point_config(method, step, 0, run_in, out, state_out=state), quiet=True)
     cvt_file = json.loads((paths.ROOT / "src" / "drives" / "default_cvt.json").read_text())
     own_run_in, counted = (QUICK_TS_RUN_IN, QUICK_TS_REVOLUTIONS) if quick else (TS_RUN_IN, TS_REVOLUTIONS)
     points = []

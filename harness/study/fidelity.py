@@ -38,7 +38,6 @@ the span model as one point per speed (harness/study/report.py). For example:
     python -m harness fidelity --report results/fidelity-1000 results/fidelity-3000 results/fidelity-6000 \\
                                --out docs/study/fidelity.md --study docs/study
 """
-import argparse
 import json
 import pathlib
 
@@ -131,23 +130,19 @@ def load_comparison(ap, path):
         ap.error(f"--report {path}: not readable as the JSON of python -m harness fidelity ({e})")
 
 
-def job_args(args, fidelity, cycles):
-    """The main job's options for one fidelity (its own defaults, checked by its own check)."""
-    ap = argparse.ArgumentParser(prog="python -m harness run")
-    job.add_arguments(ap)
-    argv = ["--rpm", repr(args.rpm), "--fidelity", fidelity, "--cycles", str(cycles)]
-    argv += ["--drive", args.drive] if args.drive else []
-    argv += ["--tables", args.tables] if args.tables else []
-    return job.check(ap, ap.parse_args(argv))
+def job_config(args, fidelity, cycles):
+    """The main job's configuration for one fidelity (the main job's defaults otherwise)."""
+    return job.run_config(rpm=args.rpm, fidelity=fidelity, cycles=cycles, drive=args.drive or None,
+                          tables=args.tables or None)
 
 
 def run_fidelity(args, fidelity, cycles):
     """One fidelity through the main job (closed loop, no plots): {summary, cost, source}; its
     summary.json and run.json go to OUT/<fidelity>."""
-    scene_args = job_args(args, fidelity, cycles)
-    scene_run = job.simulate(scene_args)
-    _, summary = job.cycle_statistics(scene_args, scene_run)
-    cost = scene_run.cost(scene_args)
+    config = job_config(args, fidelity, cycles)
+    scene_run = job.simulate(config)
+    _, summary = job.cycle_statistics(config, scene_run)
+    cost = scene_run.cost(config)
     job.write_summary(pathlib.Path(args.out) / fidelity, summary, cost)
     print(f"  {fidelity}: {cost['doStepCpuPerSimulatedSecond']:.3g} CPU s per simulated s inside fmi2DoStep "
           f"({cost['cpuPerSimulatedSecond']:.3g} with the master loop)\n")
@@ -211,7 +206,7 @@ def write_report(args):
         results["fidelity"] = [{k: v for k, v in c.items() if k != "summaries"} for c in comparisons]
         (study_dir / "results.json").write_text(json.dumps(results, indent=1))
         # the report's last section, as python -m harness study writes it by default
-        chaos = study.chaos_results(argparse.Namespace(chaos=study.CHAOS_RESULTS))
+        chaos = study.chaos_results(study.CHAOS_RESULTS)
         report.write(study_dir, results, chaos)
         print(f"written: {study_dir / 'report.md'} and its charts, with the span model")
     return 0

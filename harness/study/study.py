@@ -104,9 +104,9 @@ def check(ap, args):
     return args
 
 
-def chaos_results(args):
-    """The divergence-rate study's results for the report (None if it has not been run)."""
-    path = pathlib.Path(args.chaos)
+def chaos_results(path):
+    """The divergence-rate study's results (its JSON at path) for the report (None if it has not been run)."""
+    path = pathlib.Path(path)
     return json.loads(path.read_text()) if path.exists() else None
 
 
@@ -116,7 +116,7 @@ def rewrite_report(args):
     out.mkdir(parents=True, exist_ok=True)
     if pathlib.Path(args.report_only).resolve() != (out / "results.json").resolve():
         (out / "results.json").write_text(json.dumps(r, indent=1))
-    report.write(out, r, chaos_results(args))
+    report.write(out, r, chaos_results(args.chaos))
     print(f"written: {out / 'report.md'}")
     return 0
 
@@ -150,7 +150,7 @@ def run(args):
                    settings=dict(repeats=args.repeats, repeat_below=args.repeat_below, jobs=args.jobs,
                                  timeout=args.timeout))
     (out / "results.json").write_text(json.dumps(results, indent=1))
-    report.write(out, results, chaos_results(args))
+    report.write(out, results, chaos_results(args.chaos))
     if not args.keep_csv and not args.quick:
         shutil.rmtree(out / "runs", ignore_errors=True)
     print(f"\nwritten: {out / 'report.md'} ({wall / 60:.1f} min)")

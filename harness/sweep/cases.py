@@ -8,7 +8,6 @@ A case is a plain value (Case): it travels to a Dask worker, which runs it with 
 is instantiated there) and returns a plain dict. Its cache key (case_key) covers every input that
 changes the result: the case's fields, the contents of the drive file and of the tables, and the
 code version (the FMU binary and the harness's sources)."""
-import argparse
 import contextlib
 import dataclasses
 import hashlib
@@ -56,12 +55,11 @@ class Case:
         speed = f"run-up {self.rpm:g}-{self.rpm_end:g} rpm in {self.ramp_s:g} s" if self.runup else f"{self.rpm:g} rpm"
         return f"{speed}, {self.fidelity}, {self.method}"
 
-    def args(self):
-        """The main job's options for this case (harness/job.py)."""
-        return argparse.Namespace(drive=self.drive, rpm=self.rpm, fidelity=self.fidelity, cycles=self.cycles,
-                                  run_in=None, coupling="closed", tables=self.tables, step=1e-4, method=self.method,
-                                  solver_step=self.solver_step or job.SOLVER_STEP.get(self.fidelity), rtol=1e-5,
-                                  newmark_gamma=0.5)
+    def config(self):
+        """The main job's configuration of this case (harness/job.py): closed loop, the run-in and
+        every option the case does not set at the main job's defaults."""
+        return job.run_config(rpm=self.rpm, fidelity=self.fidelity, method=self.method, solver_step=self.solver_step,
+                              cycles=self.cycles, drive=self.drive, tables=self.tables)
 
 
 def _digest_files(paths_, h):
@@ -107,9 +105,9 @@ def run_case(case):
 
 
 def _run_stationary(case):
-    args = case.args()
-    scene_run = job.simulate(args, progress=False)
-    _, summary = job.cycle_statistics(args, scene_run)
+    config = case.config()
+    scene_run = job.simulate(config, progress=False)
+    _, summary = job.cycle_statistics(config, scene_run)
     d = scene_run.record
     spans = cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[:case.cycles]
     row = {"rpm": case.rpm, "cycles": len(spans)}
@@ -162,11 +160,11 @@ def runup_inputs(case, ramp_start):
 def _run_runup(case):
     if not (case.ramp_s and case.ramp_s > 0.0):
         raise ValueError(f"run-up: ramp time {case.ramp_s} s must be positive")
-    args = case.args()
-    run_in = job.run_in_cycles(case.rpm)
+    config = case.config()
+    run_in = config.run_in
     ramp_start = run_in * 120.0 / case.rpm
     cpu0 = time.process_time()
-    d, _ = job.run_closed(args, ramp_start + case.ramp_s, runup_inputs(case, ramp_start), progress=False)
+    d, _ = job.run_closed(config, ramp_start + case.ramp_s, runup_inputs(case, ramp_start), progress=False)
     cpu = time.process_time() - cpu0
     per_cycle = cycle_stats.per_cycle(d, run_in, meshing_order(drive_json(case.drive)))
     spans = cycle_stats.cycle_spans(d["crankshaft.phi"], run_in)

@@ -1,6 +1,5 @@
 """Scenes through ChainDrive.fmu with the measured-torque tables (synthesized, harness/tables/data):
 the main job (harness/job.py)."""
-import argparse
 import json
 import subprocess
 import sys
@@ -18,10 +17,9 @@ RPM = 2000.0
 
 @pytest.fixture(scope="module")
 def closed_loop_2000():
-    args = argparse.Namespace(drive=None, rpm=RPM, step=1e-4, fidelity="link", method="fixed-verlet",
-                              solver_step=2.5e-6, rtol=1e-5, newmark_gamma=0.5, tables=None)
+    config = scene.run_config(rpm=RPM, solver_step=2.5e-6)
     cycle = 120.0 / RPM
-    d, _ = scene.run_closed(args, 3 * cycle, scene.table_inputs(tables.camshaft_torque(RPM),
+    d, _ = scene.run_closed(config, 3 * cycle, scene.table_inputs(tables.camshaft_torque(RPM),
                                                                 tables.crankshaft_speed(RPM)))
     return d, d["time"] >= cycle  # the first engine cycle is the start transient
 
