@@ -9,7 +9,7 @@ inputs of communication step k (a dict from inputs_at(k)) are set before the ste
   integer nanoseconds;
 - ecos (a small C++ co-simulation engine): time accumulated, t += H.
 
-The FMU puts every communication point on its own time grid (src/run/time_grid.h), so all of them
+The FMU puts every communication point on its own time grid (src/integrators/time_grid.h), so all of them
 give the same bits for the same inputs (tests/python/fmu/test_grid.py).
 """
 import numpy as np

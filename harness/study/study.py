@@ -46,7 +46,7 @@ known only to within the scatter of the cycles (harness/cycle_stats.py).
    maximum).
 
 Every run writes outputs every 60 us (OUTPUT_STEP): a whole number of steps of every fixed step
-of the sweeps, so that all runs share their output times on the time grid (src/run/time_grid.h).
+of the sweeps, so that all runs share their output times on the time grid (src/integrators/time_grid.h).
 
 --quick: 6000 rpm (the shortest cycle), a 2-cycle run-in, 2 measured cycles, a reference at rtol 1e-6 over 3 cycles, one or two points per method, a reduced
 stability map and short real-time timings: a smoke test of the whole chain (each method gives a
