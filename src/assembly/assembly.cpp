@@ -136,7 +136,8 @@ void throwIfAny(const std::vector<std::string>& problems) {
 
 // ---- the steps of assemble(), in order ----
 
-ContactLaw contactLaw(const ContactLawDesc& c) {
+// The model's contact law as described: the force model by name, its parameters as given.
+ContactLaw contactLawFromDescription(const ContactLawDesc& c) {
   ContactLaw l;
   l.huntCrossley = c.model == "hunt-crossley";
   l.stiffness = c.stiffness;
@@ -168,8 +169,8 @@ void setConstants(const DriveDescription& desc, Model& m) {
   ch.jointDamping = desc.chain.joint.damping;
   ch.jointClearance = desc.chain.joint.clearance;
 
-  m.rollerSprocket = contactLaw(desc.contact.rollerSprocket);
-  m.plateGuide = contactLaw(desc.contact.plateGuide);
+  m.rollerSprocket = contactLawFromDescription(desc.contact.rollerSprocket);
+  m.plateGuide = contactLawFromDescription(desc.contact.plateGuide);
 }
 
 // A rotor (a sprocket or a pivoting guide, `element` in its list); returns its index.
