@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "assembly/model.h"
+#include "assembly/pin_placement.h"
 #include "math/elementary.h"
 
 namespace chaindrive {
@@ -135,7 +136,8 @@ void throwIfAny(const std::vector<std::string>& problems) {
 
 // ---- the steps of assemble(), in order ----
 
-ContactLaw contactLaw(const ContactLawDesc& c) {
+// The model's contact law as described: the force model by name, its parameters as given.
+ContactLaw contactLawFromDescription(const ContactLawDesc& c) {
   ContactLaw l;
   l.huntCrossley = c.model == "hunt-crossley";
   l.stiffness = c.stiffness;
@@ -167,8 +169,8 @@ void setConstants(const DriveDescription& desc, Model& m) {
   ch.jointDamping = desc.chain.joint.damping;
   ch.jointClearance = desc.chain.joint.clearance;
 
-  m.rollerSprocket = contactLaw(desc.contact.rollerSprocket);
-  m.plateGuide = contactLaw(desc.contact.plateGuide);
+  m.rollerSprocket = contactLawFromDescription(desc.contact.rollerSprocket);
+  m.plateGuide = contactLawFromDescription(desc.contact.plateGuide);
 }
 
 // A rotor (a sprocket or a pivoting guide, `element` in its list); returns its index.
@@ -448,41 +450,16 @@ void applyClosure(const ClosureDesc& cl, Model& m, Layout& layout, double x) {
   }
 }
 
-// The pin at arc length s and what carries it there: a sprocket, a guide or a free span.
-PinNominal nominalPin(const Model& m, const std::vector<RouteElement>& route, double s) {
-  PinNominal pn;
-  pn.position = m.path.point(s);
-  pn.tangent = m.path.tangent(s);
-  const PathSegment& seg = m.path.segments()[m.path.segmentAt(s)];
-  if (seg.isArc) {
-    const RouteElement& e = route[seg.routeIndex];
-    pn.center = seg.center;
-    pn.radius = std::fabs(seg.signedRadius);
-    if (e.sprocket) {
-      pn.on = PinNominal::On::Sprocket;
-      pn.rotor = m.sprockets[e.index].rotor;
-    } else {
-      pn.on = PinNominal::On::Guide;
-      pn.rotor = m.guides[e.index].rotor;
-    }
-  } else {
-    pn.on = PinNominal::On::Span;
+// What carries the pins on each wrap of the route: a sprocket's rotor, or a guide (with its
+// rotor if it pivots).
+std::vector<WrapCarrier> wrapCarriers(const Model& m, const std::vector<RouteElement>& route) {
+  std::vector<WrapCarrier> carriers(route.size());
+  for (std::size_t r = 0; r < route.size(); ++r) {
+    const RouteElement& e = route[r];
+    carriers[r] = e.sprocket ? WrapCarrier{PinNominal::On::Sprocket, m.sprockets[e.index].rotor}
+                             : WrapCarrier{PinNominal::On::Guide, m.guides[e.index].rotor};
   }
-  return pn;
-}
-
-// Pins at the nominal pose: n chords of one pitch from the middle of the first wrap, with the
-// gap of the closing joint and the largest deviation of a joint from one pitch.
-void placePins(Model& m, const std::vector<RouteElement>& route) {
-  const int n = m.chain.links;
-  const double p = m.chain.pitch;
-  std::vector<double> spin;
-  const double s0 = m.path.arcMiddle(0);
-  const double sEnd = walkChords(m.path, s0, n, p, &spin);
-  m.assembly.closureResidual = norm(m.path.point(sEnd) - m.path.point(s0));
-  m.pins.resize(n);
-  for (int k = 0; k < n; ++k) m.pins[k] = nominalPin(m, route, spin[k]);
-  m.assembly.maxJointGap = largestChordError(m.pins, p);
+  return carriers;
 }
 
 // The pin on sprocket rotor `rotor` nearest the point at arc length `mid`; -1 if none.
@@ -554,6 +531,39 @@ void layOutState(Model& m) {
   m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
 }
 
+namespace {
+
+// The pin at arc length s and what carries it there: a wrap's carrier, or a span.
+PinNominal nominalPin(const ChainPath& path, const std::vector<WrapCarrier>& wrapCarriers, double s) {
+  PinNominal pn;
+  pn.position = path.point(s);
+  pn.tangent = path.tangent(s);
+  const PathSegment& seg = path.segments()[path.segmentAt(s)];
+  if (seg.isArc) {
+    const WrapCarrier& carrier = wrapCarriers[seg.routeIndex];
+    pn.on = carrier.on;
+    pn.rotor = carrier.rotor;
+    pn.center = seg.center;
+    pn.radius = std::fabs(seg.signedRadius);
+  } else {
+    pn.on = PinNominal::On::Span;
+  }
+  return pn;
+}
+
+}  // namespace
+
+void placePins(Model& m, double chord, const std::vector<WrapCarrier>& wrapCarriers) {
+  const int n = m.chain.links;
+  std::vector<double> spin;
+  const double s0 = m.path.arcMiddle(0);
+  const double sEnd = walkChords(m.path, s0, n, chord, &spin);
+  m.assembly.closureResidual = norm(m.path.point(sEnd) - m.path.point(s0));
+  m.pins.resize(n);
+  for (int k = 0; k < n; ++k) m.pins[k] = nominalPin(m.path, wrapCarriers, spin[k]);
+  m.assembly.maxJointGap = largestChordError(m.pins, chord);
+}
+
 double largestChordError(const std::vector<PinNominal>& pins, double chord) {
   const std::size_t n = pins.size();
   double largest = 0.0;
@@ -590,7 +600,7 @@ Model assemble(const DriveDescription& desc) {
   applyClosure(cl, m, layout, solveClosure(cl, m, layout));
 
   // the rigid pose: pins on the path, each sprocket turned to seat a roller in a tooth gap
-  placePins(m, layout.route());
+  placePins(m, m.chain.pitch, wrapCarriers(m, layout.route()));
   alignSprockets(m, layout.route(), problems);
   throwIfAny(problems);
 

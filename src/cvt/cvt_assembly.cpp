@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "assembly/pin_placement.h"
 #include "statics/preload.h"
 #include "description/fields.h"
 #include "cvt/cvt_outputs.h"
@@ -99,28 +100,10 @@ void addPulley(Model& m, const std::string& name, Vec2 center, double inertia, b
   m.pulleys.push_back(p);
 }
 
-// The pins n chords of `chord` apart from the middle of the driving pulley's wrap, each on a
-// pulley (carried by its rotor) or on a strand.
-void placePins(Model& m, double chord) {
-  const int n = m.chain.links;
-  std::vector<double> spin;
-  const double s0 = m.path.arcMiddle(0);
-  const double sEnd = walkChords(m.path, s0, n, chord, &spin);
-  m.assembly.closureResidual = norm(m.path.point(sEnd) - m.path.point(s0));
-  m.pins.resize(n);
-  for (int k = 0; k < n; ++k) {
-    PinNominal& pn = m.pins[k];
-    pn.position = m.path.point(spin[k]);
-    pn.tangent = m.path.tangent(spin[k]);
-    const PathSegment& seg = m.path.segments()[m.path.segmentAt(spin[k])];
-    pn.on = seg.isArc ? PinNominal::On::Sprocket : PinNominal::On::Span;
-    if (seg.isArc) {
-      pn.rotor = m.pulleys[seg.routeIndex].rotor;
-      pn.center = seg.center;
-      pn.radius = std::fabs(seg.signedRadius);
-    }
-  }
-  m.assembly.maxJointGap = largestChordError(m.pins, chord);
+// Both pulleys carry the pins on their wraps (route element k is pulley k), as sprockets do.
+std::vector<WrapCarrier> pulleyCarriers(const Model& m) {
+  return {WrapCarrier{PinNominal::On::Sprocket, m.pulleys[kDrivingPulley].rotor},
+          WrapCarrier{PinNominal::On::Sprocket, m.pulleys[kDrivenPulley].rotor}};
 }
 
 // The layout at ratio d.ratio: the pre-tension the driven pulley's clamping force holds,
@@ -201,7 +184,7 @@ Model assembleCvt(const CvtDescription& d, CvtLayout* layout) {
     m.pulleys[k].freeRadius = out.freeRadius[k];
   }
   m.ratioTable = ratioTable(d, m.pinSheave);
-  placePins(m, out.chord);
+  placePins(m, out.chord, pulleyCarriers(m));  // from the middle of the driving pulley's wrap
   noteLayout(m, out);
   placeStrandProbes(m);
   layOutState(m);

@@ -261,10 +261,35 @@ void EventDriven::restartIntegrator() {
   setupRoots();
 }
 
+// The impact at the current state (where a contact at the surface approaches), the slow
+// rebounds closed, the dissipated energy booked; then the positions projected onto the surface
+// and the contacts classified for the next smooth phase.
 void EventDriven::impact(double t) {
   const double tol = settings_.gapTolerance;
   sys_.constraints(t, q_.data(), v_.data(), tol, false, cs_);
-  // Newton's law for every contact at the surface (closed and closing), frictionless
+  collectImpactRows();
+  if (anyApproaching()) {
+    vBefore_.assign(v_.begin(), v_.end());
+    applyNewtonImpact(t);
+    closeSlowRebounds(t);
+    // energy: the drive's work on prescribed DOFs does not change them; the loss is the rest
+    const double lost = kineticEnergy(vBefore_.data()) - kineticEnergy(v_.data());
+    dissipated_ += lost;
+  }
+  // position projection: contacts found below the surface (events are located at a gap of
+  // minus half the tolerance) are moved back onto it, with the bilateral constraints, so that
+  // every flight starts from a non-negative gap and its landing changes the sign of the root
+  // function
+  projectPositions(sys_, t, q_.data(), v_.data(), solver_);
+  sys_.constraints(t, q_.data(), v_.data(), tol, false, cs_);
+  classifyContacts();
+}
+
+// Newton's law for every contact at the surface (closed and closing), frictionless: the
+// post-impact normal velocity is at least -e times the one before; the bilateral constraints
+// keep zero velocity.
+void EventDriven::collectImpactRows() {
+  const double tol = settings_.gapTolerance;
   rows_.clear();
   for (const Contact& c : cs_.contacts) {
     if (c.gap > tol) continue;
@@ -280,70 +305,85 @@ void EventDriven::impact(double t) {
     bil_.push_back(&b);
     bB_.push_back(b.w.dot(v_.data()));
   }
-  std::vector<double> vBefore(v_);
+}
+
+// An impact only where a contact at the surface approaches: otherwise its impulses are zero.
+bool EventDriven::anyApproaching() const {
   bool any = false;
-  if (!rows_.empty()) {
-    for (const ContactRow& r : rows_) any = any || r.bN < 0.0;
-  }
-  if (any) {
-    const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
-    countSolve(stats_, s);
-    if (!s.solved())
-      throw IntegrationError(t, lcpFailureKind(s.status),
-                             std::string("impact LCP of size ") + std::to_string(s.size) + " not solved: " + statusText(s));
-    for (std::size_t k = 0; k < rows_.size(); ++k) addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), v_.data());
-    for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), v_.data());
-    ++stats_.impacts;
-    // slow rebounds close their contact: a plastic impact for them (equality rows), the others
-    // (and the bilateral constraints) kept
-    std::vector<Bilateral> closing;
-    for (const ContactRow& r : rows_) {
-      const double u = r.contact->wN.dot(v_.data());
-      if (u < settings_.reboundThreshold && std::fabs(u) > 0.0) {
-        Bilateral b;
-        b.w = r.contact->wN;
-        closing.push_back(b);
-      }
+  for (const ContactRow& r : rows_) any = any || r.bN < 0.0;
+  return any;
+}
+
+// The impact LCP (eq. 10-12) and its impulses on v_.
+void EventDriven::applyNewtonImpact(double t) {
+  const ConstraintSolution& s = solver_.solve(rows_, bil_, bB_, minv_.data(), settings_.maxPivots);
+  countSolve(stats_, s);
+  if (!s.solved())
+    throw IntegrationError(t, lcpFailureKind(s.status),
+                           std::string("impact LCP of size ") + std::to_string(s.size) + " not solved: " + statusText(s));
+  for (std::size_t k = 0; k < rows_.size(); ++k) addImpulse(rows_[k].contact->wN, s.fN[k], minv_.data(), v_.data());
+  for (std::size_t k = 0; k < bil_.size(); ++k) addImpulse(bil_[k]->w, s.fB[k], minv_.data(), v_.data());
+  ++stats_.impacts;
+}
+
+// A rebound slower than the threshold (and not exactly zero: a contact that stays closed).
+bool EventDriven::reboundsSlowly(double uN) const {
+  return uN < settings_.reboundThreshold && std::fabs(uN) > 0.0;
+}
+
+// Slow rebounds close their contact, so that accumulating impacts (Zeno) end instead of
+// tunnelling: a plastic impact for them, the other contacts and the bilateral constraints kept.
+void EventDriven::closeSlowRebounds(double t) {
+  closing_.clear();
+  for (const ContactRow& r : rows_)
+    if (reboundsSlowly(r.contact->wN.dot(v_.data()))) {
+      Bilateral b;
+      b.w = r.contact->wN;
+      closing_.push_back(b);
     }
-    if (!closing.empty()) {
-      std::vector<ContactRow> others;
-      for (const ContactRow& r : rows_) {
-        const double u = r.contact->wN.dot(v_.data());
-        if (!(u < settings_.reboundThreshold && std::fabs(u) > 0.0)) {
-          ContactRow o = r;
-          o.bN = u;
-          others.push_back(o);
-        }
-      }
-      std::vector<const Bilateral*> eq(bil_);
-      std::vector<double> beq(bB_.size());
-      for (std::size_t k = 0; k < bil_.size(); ++k) beq[k] = bil_[k]->w.dot(v_.data());
-      for (const Bilateral& b : closing) {
-        eq.push_back(&b);
-        beq.push_back(b.w.dot(v_.data()));
-      }
-      const ConstraintSolution& s2 = solver_.solve(others, eq, beq, minv_.data(), settings_.maxPivots);
-      countSolve(stats_, s2);
-      if (!s2.solved())
-        throw IntegrationError(t, lcpFailureKind(s2.status),
-                               std::string("closing (plastic) impact LCP not solved: ") + statusText(s2));
-      for (std::size_t k = 0; k < others.size(); ++k) addImpulse(others[k].contact->wN, s2.fN[k], minv_.data(), v_.data());
-      for (std::size_t k = 0; k < eq.size(); ++k) addImpulse(eq[k]->w, s2.fB[k], minv_.data(), v_.data());
+  if (closing_.empty()) return;
+  collectPlasticImpactRows();
+  applyPlasticImpact(t);
+}
+
+// The plastic impact's problem: the other contacts' rows at their velocity after the impact
+// (inelastic now), equality rows for the bilateral constraints and the closing contacts.
+void EventDriven::collectPlasticImpactRows() {
+  others_.clear();
+  for (const ContactRow& r : rows_) {
+    const double u = r.contact->wN.dot(v_.data());
+    if (!reboundsSlowly(u)) {
+      ContactRow o = r;
+      o.bN = u;
+      others_.push_back(o);
     }
-    // energy: the drive's work on prescribed DOFs does not change them; the loss is the rest
-    const double lost = kineticEnergy(vBefore.data()) - kineticEnergy(v_.data());
-    dissipated_ += lost;
   }
-  // position projection: contacts found below the surface (events are located at a gap of
-  // minus half the tolerance) are moved back onto it, with the bilateral constraints, so that
-  // every flight starts from a non-negative gap and its landing changes the sign of the root
-  // function
-  projectPositions(sys_, t, q_.data(), v_.data(), solver_);
-  sys_.constraints(t, q_.data(), v_.data(), tol, false, cs_);
-  // classification
+  eq_.assign(bil_.begin(), bil_.end());
+  beq_.clear();
+  for (std::size_t k = 0; k < bil_.size(); ++k) beq_.push_back(bil_[k]->w.dot(v_.data()));
+  for (const Bilateral& b : closing_) {  // (closing_ is complete: the pointers stay valid)
+    eq_.push_back(&b);
+    beq_.push_back(b.w.dot(v_.data()));
+  }
+}
+
+// The plastic impact LCP and its impulses on v_.
+void EventDriven::applyPlasticImpact(double t) {
+  const ConstraintSolution& s = solver_.solve(others_, eq_, beq_, minv_.data(), settings_.maxPivots);
+  countSolve(stats_, s);
+  if (!s.solved())
+    throw IntegrationError(t, lcpFailureKind(s.status),
+                           std::string("closing (plastic) impact LCP not solved: ") + statusText(s));
+  for (std::size_t k = 0; k < others_.size(); ++k) addImpulse(others_[k].contact->wN, s.fN[k], minv_.data(), v_.data());
+  for (std::size_t k = 0; k < eq_.size(); ++k) addImpulse(eq_[k]->w, s.fB[k], minv_.data(), v_.data());
+}
+
+// The closed contacts after an impact: at the surface and not separating; sticking where the
+// tangential speed is below the stick speed, else sliding in its direction.
+void EventDriven::classifyContacts() {
   closed_.clear();
   for (const Contact& c : cs_.contacts) {
-    if (c.gap > tol) continue;
+    if (c.gap > settings_.gapTolerance) continue;
     const double uN = c.wN.dot(v_.data());
     if (uN >= settings_.reboundThreshold) continue;  // separating
     const double uT = c.wT.dot(v_.data());
@@ -402,80 +442,116 @@ void EventDriven::advance(double tout) {
   if (tout <= t_) return;
   ERKStepSetStopTime(sun_->mem, tout);
   while (t_ < tout) {
-    double t = t_;
-    lastFailure_.kind = FailureKind::Other;
-    lastFailure_.reason.clear();  // keeps its capacity
-    const int flag = ERKStepEvolve(sun_->mem, tout, sun_->y->v, &t, ARK_ONE_STEP);
-    if (flag < 0) {
-      // the right-hand side's own failure (its constraint problem), else the solver's flag
-      const Failure why = lastFailure_.reason.empty()
-                              ? Failure{sundialsFailureKind(flag),
-                                        std::string("ARKODE flag ") + std::to_string(flag) + ": " + solverMessage_}
-                              : lastFailure_;
-      double tcur = t_;
-      ERKStepGetCurrentTime(sun_->mem, &tcur);
-      throw IntegrationError(tcur, why);
-    }
-    ++stats_.steps;
-    t_ = t;
-    const double* y = sun_->y->data();
-    std::copy(y, y + n_, q_.begin());
-    std::copy(y + n_, y + 2 * n_, v_.begin());
-    inputWork_ = y[2 * n_];
-    dissipated_ = y[2 * n_ + 1];
+    const int flag = takeStep(tout);
     bool restart = false;
     if (flag == ARK_ROOT_RETURN) {
-      std::vector<int> info(1 + sliding_.size() + sticking_.size(), 0);
-      ERKStepGetRootInfo(sun_->mem, info.data());
-      for (std::size_t k = 0; k < sliding_.size(); ++k)
-        if (info[1 + k] != 0)
-          for (Closed& c : closed_)
-            if (c.id == sliding_[k]) c.mode = Mode::Stick;
-      if (!sticking_.empty()) {
-        // the friction force reached the static cone: slide against it, with kinetic friction
-        accelerations(t_, q_.data(), v_.data(), true);
-        for (std::size_t k = 0; k < sticking_.size(); ++k) {
-          if (info[1 + sliding_.size() + k] == 0) continue;
-          for (const ContactForce& f : forces_)
-            if (f.id == sticking_[k])
-              for (Closed& c : closed_)
-                if (c.id == f.id) {
-                  c.mode = Mode::Slide;
-                  c.sign = f.fT > 0.0 ? -1.0 : 1.0;
-                }
-        }
-      }
-      if (info[0] != 0) impact(t_);
-      ++stats_.events;
-      ++eventWindowCount_;
+      handleRoots();
+      countEvent();
       restart = true;
     }
     if (reclassify(t_)) {
-      ++stats_.events;
-      ++eventWindowCount_;
+      countEvent();
       restart = true;
     }
     Failure why;
     if (!sys_.healthy(t_, q_.data(), v_.data(), why)) throw IntegrationError(t_, why);
-    if (eventWindowCount_ >= kEventBatch) {
-      // the event rate over the last batch of events
-      const double span = t_ - eventWindowStart_;
-      if (static_cast<double>(eventWindowCount_) > settings_.maxEventsPerSecond * span) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "runaway events: %lld events in %.3g s (%.3g per s; limit %.3g per s)",
-                      eventWindowCount_, span, span > 0.0 ? static_cast<double>(eventWindowCount_) / span : HUGE_VAL,
-                      settings_.maxEventsPerSecond);
-        throw IntegrationError(t_, FailureKind::RunawayEvents, buf);
-      }
-      eventWindowStart_ = t_;
-      eventWindowCount_ = 0;
-    }
+    checkEventRate();
+    // a new contact configuration is a new smooth phase: the integrator starts afresh from the
+    // state after the event, with the root functions of the new configuration
     if (restart) {
       restartIntegrator();
       ERKStepSetStopTime(sun_->mem, tout);
     }
   }
   if (!accelerations(t_, q_.data(), v_.data(), true)) throw IntegrationError(t_, lastFailure_);
+}
+
+// One step of the integrator towards tout (to a root where one is found); the state after it in
+// t_, q_, v_ and the energy accumulators. Returns the solver's flag (ARK_ROOT_RETURN at a root).
+int EventDriven::takeStep(double tout) {
+  double t = t_;
+  // cleared, so that a failure the right-hand side reports during this step is told from the
+  // solver's own
+  lastFailure_.kind = FailureKind::Other;
+  lastFailure_.reason.clear();  // keeps its capacity
+  const int flag = ERKStepEvolve(sun_->mem, tout, sun_->y->v, &t, ARK_ONE_STEP);
+  if (flag < 0) throwStepFailure(flag);
+  ++stats_.steps;
+  t_ = t;
+  const double* y = sun_->y->data();
+  std::copy(y, y + n_, q_.begin());
+  std::copy(y + n_, y + 2 * n_, v_.begin());
+  inputWork_ = y[2 * n_];
+  dissipated_ = y[2 * n_ + 1];
+  return flag;
+}
+
+// A failed step: the right-hand side's own failure (its constraint problem) where it reported
+// one, else the solver's flag and message; at the solver's current time.
+void EventDriven::throwStepFailure(int flag) {
+  const Failure why = lastFailure_.reason.empty()
+                          ? Failure{sundialsFailureKind(flag),
+                                    std::string("ARKODE flag ") + std::to_string(flag) + ": " + solverMessage_}
+                          : lastFailure_;
+  double tcur = t_;
+  ERKStepGetCurrentTime(sun_->mem, &tcur);
+  throw IntegrationError(tcur, why);
+}
+
+// The events at a root (root functions in setupRoots' order: the closing gap, the sliding
+// contacts, the sticking ones): mode changes first, then the impact, which classifies the
+// contacts anew.
+void EventDriven::handleRoots() {
+  rootInfo_.assign(1 + sliding_.size() + sticking_.size(), 0);
+  ERKStepGetRootInfo(sun_->mem, rootInfo_.data());
+  stickWhereSlidingStopped();
+  if (!sticking_.empty()) slideWhereFrictionSaturated();
+  if (rootInfo_[0] != 0) impact(t_);
+}
+
+// Sliding contacts whose sliding velocity reached zero stick.
+void EventDriven::stickWhereSlidingStopped() {
+  for (std::size_t k = 0; k < sliding_.size(); ++k)
+    if (rootInfo_[1 + k] != 0)
+      for (Closed& c : closed_)
+        if (c.id == sliding_[k]) c.mode = Mode::Stick;
+}
+
+// The friction force of sticking contacts reached the static cone: they slide against it, with
+// kinetic friction (the forces at the current state tell the direction).
+void EventDriven::slideWhereFrictionSaturated() {
+  accelerations(t_, q_.data(), v_.data(), true);
+  for (std::size_t k = 0; k < sticking_.size(); ++k) {
+    if (rootInfo_[1 + sliding_.size() + k] == 0) continue;
+    for (const ContactForce& f : forces_)
+      if (f.id == sticking_[k])
+        for (Closed& c : closed_)
+          if (c.id == f.id) {
+            c.mode = Mode::Slide;
+            c.sign = f.fT > 0.0 ? -1.0 : 1.0;
+          }
+  }
+}
+
+void EventDriven::countEvent() {
+  ++stats_.events;
+  ++eventWindowCount_;
+}
+
+// The event rate over the last batch of events: above the limit, the events run away (an
+// accumulation the safeguards do not end) and the run fails instead of crawling on.
+void EventDriven::checkEventRate() {
+  if (eventWindowCount_ < kEventBatch) return;
+  const double span = t_ - eventWindowStart_;
+  if (static_cast<double>(eventWindowCount_) > settings_.maxEventsPerSecond * span) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "runaway events: %lld events in %.3g s (%.3g per s; limit %.3g per s)",
+                  eventWindowCount_, span, span > 0.0 ? static_cast<double>(eventWindowCount_) / span : HUGE_VAL,
+                  settings_.maxEventsPerSecond);
+    throw IntegrationError(t_, FailureKind::RunawayEvents, buf);
+  }
+  eventWindowStart_ = t_;
+  eventWindowCount_ = 0;
 }
 
 }  // namespace chaindrive::ns

@@ -70,7 +70,24 @@ class EventDriven : public NonsmoothMethod {
   /// The acceleration LCP at (t, q, v); fills acc_ (and forces_ if `record`). False on failure.
   bool accelerations(double t, const double* q, const double* v, bool record);
   void impact(double t);                 // impact at the current state, then classification
+  // the steps of impact(), in order
+  void collectImpactRows();              // Newton's law rows of the contacts at the surface
+  bool anyApproaching() const;
+  void applyNewtonImpact(double t);      // the impact LCP and its impulses
+  bool reboundsSlowly(double uN) const;
+  void closeSlowRebounds(double t);      // a plastic impact for rebounds below the threshold
+  void collectPlasticImpactRows();
+  void applyPlasticImpact(double t);
+  void classifyContacts();               // the closed contacts and their modes
   bool reclassify(double t);             // after a step; true if the configuration changed
+  // the steps of advance(), in order
+  int takeStep(double tout);             // one integrator step; returns the solver's flag
+  [[noreturn]] void throwStepFailure(int flag);
+  void handleRoots();                    // the events at a root: mode changes, impact
+  void stickWhereSlidingStopped();
+  void slideWhereFrictionSaturated();
+  void countEvent();
+  void checkEventRate();                 // throws on runaway events
   void restartIntegrator();
   void setupRoots();
   double kineticEnergy(const double* v) const;
@@ -88,6 +105,14 @@ class EventDriven : public NonsmoothMethod {
   std::vector<ContactRow> rows_;
   std::vector<const Bilateral*> bil_;
   std::vector<double> bB_;
+  // impact(): the velocities before it, the slow rebounds' closing rows and the plastic impact's
+  // problem (its open contacts, its equality rows and their offsets)
+  std::vector<double> vBefore_;
+  std::vector<Bilateral> closing_;
+  std::vector<ContactRow> others_;
+  std::vector<const Bilateral*> eq_;
+  std::vector<double> beq_;
+  std::vector<int> rootInfo_;  // advance(): which root functions crossed zero
   double eventWindowStart_ = 0.0;
   long long eventWindowCount_ = 0;
   Failure lastFailure_;  // of the last failed right-hand side (its constraint problem)
