@@ -1,5 +1,7 @@
 #include "host.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
@@ -137,6 +139,97 @@ bool Host::allowed(const char* function, unsigned allowedStates) {
   if (state_ & allowedStates) return true;
   log(fmi2Error, "logStatusError", "%s: not allowed in state '%s'", function, stateName(state_));
   return false;
+}
+
+// ---- the state machine's transitions ----
+
+bool Host::setExperiment(double startTime, bool stopTimeDefined, double stopTime) {
+  if (!std::isfinite(startTime)) {
+    log(fmi2Error, "logStatusError", "fmi2SetupExperiment: startTime %g is not finite", startTime);
+    return false;
+  }
+  if (stopTimeDefined && !(stopTime >= startTime)) {
+    log(fmi2Error, "logStatusError", "fmi2SetupExperiment: stopTime %g is before startTime %g", stopTime, startTime);
+    return false;
+  }
+  startTime_ = time_ = lastSuccessfulTime_ = startTime;
+  stopTimeDefined_ = stopTimeDefined;
+  stopTime_ = stopTime;
+  return true;
+}
+
+fmi2Status Host::enterInitializationMode() {
+  state_ = kInitializationMode;
+  return fmi2OK;
+}
+
+// The step: positive, from the FMU's time (within a relative drift), not past the stop time.
+bool Host::stepAcceptable(double cp, double h, double& tEnd) {
+  if (!std::isfinite(h) || h <= 0.0) {
+    log(fmi2Error, "logStatusError", "fmi2DoStep: communicationStepSize %g must be positive and finite", h);
+    return false;
+  }
+  const double tol = 1e-9 * std::max(1.0, std::fabs(time_));
+  if (!std::isfinite(cp) || std::fabs(cp - time_) > tol) {
+    log(fmi2Error, "logStatusError", "fmi2DoStep: currentCommunicationPoint %.17g does not match the FMU time %.17g", cp,
+        time_);
+    return false;
+  }
+  tEnd = cp + h;
+  if (stopTimeDefined_ && tEnd > stopTime_ * (1.0 + 1e-12) + 1e-12) {
+    log(fmi2Error, "logStatusError", "fmi2DoStep: the step ends at %.17g, after the stop time %.17g", tEnd, stopTime_);
+    return false;
+  }
+  return true;
+}
+
+void Host::stepCompleted(double tEnd) {
+  time_ = tEnd;
+  lastSuccessfulTime_ = tEnd;
+}
+
+void Host::stepDiscarded() {
+  lastSuccessfulTime_ = time_;
+  state_ = kStepFailed;
+}
+
+fmi2Status Host::terminate() {
+  state_ = kTerminated;
+  return fmi2OK;
+}
+
+void Host::resetProtocol() {
+  time_ = startTime_ = stopTime_ = lastSuccessfulTime_ = 0.0;
+  stopTimeDefined_ = false;
+  state_ = kInstantiated;
+}
+
+// ---- status queries and FMU states ----
+
+fmi2Status Host::getRealStatus(fmi2StatusKind kind, fmi2Real* value) {
+  if (kind == fmi2LastSuccessfulTime) {
+    *value = lastSuccessfulTime_;
+    return fmi2OK;
+  }
+  log(fmi2Error, "logStatusError", "fmi2GetRealStatus: status kind %d is not provided", static_cast<int>(kind));
+  return fmi2Discard;
+}
+
+fmi2Status Host::getStatus(fmi2StatusKind kind, fmi2Status* value) {
+  if (kind == fmi2DoStepStatus) {
+    *value = state_ == kStepFailed ? fmi2Discard : fmi2OK;
+    return fmi2OK;
+  }
+  log(fmi2Error, "logStatusError", "fmi2GetStatus: status kind %d is not provided", static_cast<int>(kind));
+  return fmi2Discard;
+}
+
+void Host::restoreProtocol(const ProtocolSnapshot& s) {
+  // a state taken after a failed step or in the error state is restored ready for the next step
+  state_ = s.state == kStepFailed || s.state == kError ? kStepComplete : s.state;
+  time_ = s.time;
+  lastSuccessfulTime_ = s.lastSuccessfulTime;
+  log(fmi2OK, "logEvents", "state restored at t = %.9g s", time_);
 }
 
 }  // namespace chaindrive::fmu

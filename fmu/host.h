@@ -1,7 +1,9 @@
-// The protocol side of an FMU instance, as its model adapter sees it (Reference-FMUs' model code
-// reads the ModelInstance for the same things): logging with its categories, the state of the
-// FMI 2.0 co-simulation state machine, the communication times and the resources folder. It
-// knows no model; Instance (instance.h) adds the protocol's operations and holds the adapter.
+// The protocol side of an FMU instance: logging with its categories, the state of the FMI 2.0
+// co-simulation state machine, the communication times and the resources folder. Host owns this
+// state, and every change of it is one of its methods: the public ones are what a model adapter
+// and the FMI functions call (Reference-FMUs' model code reads the ModelInstance for the same
+// things), the protected ones are the state machine's transitions, which only the protocol
+// (Instance, instance.h) makes. It knows no model.
 #pragma once
 
 #include <cstddef>
@@ -25,6 +27,13 @@ enum State : unsigned {
 constexpr unsigned kAllStates =
     kInstantiated | kInitializationMode | kStepComplete | kStepFailed | kTerminated | kError;
 
+/// The protocol's part of an FMU state (fmu_state.h).
+struct ProtocolSnapshot {
+  unsigned state = kStepComplete;
+  double time = 0.0;
+  double lastSuccessfulTime = 0.0;
+};
+
 class Host {
  public:
   Host(const char* instanceName, const fmi2CallbackFunctions* callbacks, const char* resourceLocation, bool loggingOn);
@@ -35,7 +44,6 @@ class Host {
   fmi2Status setDebugLogging(bool on, std::size_t n, const fmi2String categories[]);
 
   unsigned state() const { return state_; }
-  void setState(unsigned s) { state_ = s; }
   /// Returns false after logging "<function>: not allowed in state <state>" if the current state
   /// is not in `allowedStates`.
   bool allowed(const char* function, unsigned allowedStates);
@@ -52,11 +60,32 @@ class Host {
   const std::string& resourceDir() const { return resourceDir_; }
 
  protected:
+  // ---- the state machine's transitions ----
+  /// fmi2SetupExperiment's times; false (logged) if they cannot start a run.
+  bool setExperiment(double startTime, bool stopTimeDefined, double stopTime);
+  fmi2Status enterInitializationMode();
+  void startStepping() { state_ = kStepComplete; }  // the initialization succeeded
+  /// fmi2DoStep's arguments against the FMU time and the stop time: the step's end in tEnd, or
+  /// false (logged).
+  bool stepAcceptable(double cp, double h, double& tEnd);
+  void stepCompleted(double tEnd);
+  void stepDiscarded();  // the model kept its last successful state
+  fmi2Status terminate();
+  void enterErrorState() { state_ = kError; }
+  void resetProtocol();  // as instantiated
+
+  // ---- the status queries (their state: this class's) ----
+  fmi2Status getRealStatus(fmi2StatusKind kind, fmi2Real* value);
+  fmi2Status getStatus(fmi2StatusKind kind, fmi2Status* value);
+
+  // ---- the protocol's part of an FMU state ----
+  ProtocolSnapshot protocolSnapshot() const { return {state_, time_, lastSuccessfulTime_}; }
+  void restoreProtocol(const ProtocolSnapshot& s);
+
+ private:
   unsigned state_ = kInstantiated;
   double time_ = 0.0, startTime_ = 0.0, stopTime_ = 0.0, lastSuccessfulTime_ = 0.0;
   bool stopTimeDefined_ = false;
-
- private:
   std::string name_;
   fmi2CallbackFunctions callbacks_;
   std::string resourceDir_;

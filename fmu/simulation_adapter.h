@@ -1,18 +1,9 @@
-// What every model adapter of this project's FMUs shares (model_adapter.h lists the members the
-// protocol calls): a Simulation (src/run/simulation.h) on its time grid, its inputs held over a
-// communication step, the values by value reference through the adapter's tables, the
-// communication step and the solver's part of an FMU state. A model adapter derives from
-// SimulationAdapter<itself, its number of Real inputs> and gives what is its own (and
-// kModelWord, what its descriptions describe, for messages):
-//   bool parametersValid(); bool buildModel(); void startSimulation()   the steps of prepare()
-//   void resetSettings();                               parameters and inputs to their start values
-//   void applyInputs();  void evaluateOutputs();        inputs into the simulation, outputs from it
-//   double* realSetting(vr); std::string* stringParameter(vr); int* integerParameter(vr);
-//   bool* booleanParameter(vr)                          settable values (nullptr: not one)
-//   bool readRealOutput(vr, double&); bool readIntegerOutput(vr, int&)   outputs (false: not one)
-//   bool inputAcceptable(const Variable&, double)       false (logged) for an input value out of its range
-//   kStateMagic[8]                                      the first bytes of its serialized states
-// Each FMU compiles this with its own variables.h (kVariables, findVariable, kModelIdentifier).
+// What every model adapter of this project's FMUs shares: a Simulation (src/run/simulation.h) on
+// its time grid, its inputs held over a communication step, the values by value reference
+// through the adapter's tables, the communication step and the solver's part of an FMU state.
+// These public members are what the protocol (instance.h, fmi2_functions.h) calls. A model
+// adapter derives from SimulationAdapter<itself, its number of Real inputs> and provides the
+// hooks of the ModelAdapter concept (adapter_contract.h), which this class calls through self().
 #pragma once
 
 #include <array>
@@ -29,13 +20,15 @@
 #include "run/simulation.h"
 #include "state_bytes.h"
 #include "utf8_path.h"
-#include "variables.h"
+#include "variable.h"
 
 namespace chaindrive::fmu {
 
-template <class Derived, int kInputs>
+template <class Derived, int kInputCount>
 class SimulationAdapter {
  public:
+  static constexpr int kInputs = kInputCount;  // the Real inputs
+
   /// The model's part of an FMU state (fmu_state.h): the inputs, the solver state on its time
   /// grid (y empty when the model was not prepared) and the integrator's step figures.
   struct Snapshot {
@@ -86,7 +79,7 @@ class SimulationAdapter {
 
   fmi2Status getReal(const fmi2ValueReference vr[], std::size_t n, fmi2Real v[]) {
     for (std::size_t i = 0; i < n; ++i) {
-      const Variable* var = findVariable(vr[i]);
+      const Variable* var = variable(vr[i]);
       if (!var || var->type != Type::Real) return badVr("fmi2GetReal", vr[i], "is not a Real variable");
       // parameters and inputs: their values at any time
       if (const double* setting = self().realSetting(vr[i])) {
@@ -95,7 +88,7 @@ class SimulationAdapter {
       }
       // outputs: of the current state, prepared on demand in initialization mode
       if (!outputsReady()) return notAvailable("fmi2GetReal", *var);
-      if (vr[i] == kSolverTime) v[i] = sim_->time();
+      if (vr[i] == Derived::kDescription.solverTime) v[i] = sim_->time();
       else if (!self().readRealOutput(vr[i], v[i])) return badVr("fmi2GetReal", vr[i], "is not readable");
     }
     return fmi2OK;
@@ -103,7 +96,7 @@ class SimulationAdapter {
 
   fmi2Status getInteger(const fmi2ValueReference vr[], std::size_t n, fmi2Integer v[]) {
     for (std::size_t i = 0; i < n; ++i) {
-      const Variable* var = findVariable(vr[i]);
+      const Variable* var = variable(vr[i]);
       if (!var || var->type != Type::Integer) return badVr("fmi2GetInteger", vr[i], "is not an Integer variable");
       if (const int* p = self().integerParameter(vr[i])) {
         v[i] = *p;
@@ -111,7 +104,7 @@ class SimulationAdapter {
       }
       if (!outputsReady()) return notAvailable("fmi2GetInteger", *var);
       int value = 0;
-      if (vr[i] == kSolverSteps) value = static_cast<int>(steps_);
+      if (vr[i] == Derived::kDescription.solverSteps) value = static_cast<int>(steps_);
       else if (!self().readIntegerOutput(vr[i], value)) return badVr("fmi2GetInteger", vr[i], "is not readable");
       v[i] = value;
     }
@@ -139,7 +132,7 @@ class SimulationAdapter {
 
   fmi2Status setReal(const fmi2ValueReference vr[], std::size_t n, const fmi2Real v[]) {
     for (std::size_t i = 0; i < n; ++i) {
-      const Variable* var = findVariable(vr[i]);
+      const Variable* var = variable(vr[i]);
       if (!var || var->type != Type::Real || var->causality == Causality::Output)
         return badVr("fmi2SetReal", vr[i], "is not a settable Real variable");
       if (!std::isfinite(v[i])) {
@@ -164,7 +157,7 @@ class SimulationAdapter {
     for (std::size_t i = 0; i < n; ++i) {
       int* p = self().integerParameter(vr[i]);
       if (!p) return badVr("fmi2SetInteger", vr[i], "is not a settable Integer variable");
-      if (parameterChange(*findVariable(vr[i])) != fmi2OK) return fmi2Error;
+      if (parameterChange(*variable(vr[i])) != fmi2OK) return fmi2Error;
       *p = v[i];
     }
     return fmi2OK;
@@ -174,7 +167,7 @@ class SimulationAdapter {
     for (std::size_t i = 0; i < n; ++i) {
       bool* p = self().booleanParameter(vr[i]);
       if (!p) return badVr("fmi2SetBoolean", vr[i], "is not a settable Boolean variable");
-      if (parameterChange(*findVariable(vr[i])) != fmi2OK) return fmi2Error;
+      if (parameterChange(*variable(vr[i])) != fmi2OK) return fmi2Error;
       *p = v[i] != fmi2False;
     }
     return fmi2OK;
@@ -188,7 +181,7 @@ class SimulationAdapter {
         host_.log(fmi2Error, "logStatusError", "fmi2SetString: NULL string for value reference %u", vr[i]);
         return fmi2Error;
       }
-      if (parameterChange(*findVariable(vr[i])) != fmi2OK) return fmi2Error;
+      if (parameterChange(*variable(vr[i])) != fmi2OK) return fmi2Error;
       *target = v[i];
     }
     return fmi2OK;
@@ -314,6 +307,7 @@ class SimulationAdapter {
 
  protected:
   Derived& self() { return static_cast<Derived&>(*this); }
+  static const Variable* variable(unsigned vr) { return Derived::kDescription.variable(vr); }
 
   /// The description in `file` (a parameter); empty: `resource` in the FMU's resources folder, or
   /// the one built into the binary (with a warning) when the importer gave none. Logged.

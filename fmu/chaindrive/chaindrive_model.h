@@ -1,9 +1,9 @@
 // The model adapter of ChainDrive.fmu (Reference-FMUs' model.c): the parameters and their
 // validation, the preparation of the drive and its start state, the inputs and the outputs by
 // value reference; the values' checks, the communication step and the FMU state's solver part
-// are SimulationAdapter's (simulation_adapter.h). The protocol (host.h, instance.h, fmu_state.h,
-// fmi2_functions.cpp) calls it through the members listed in model_adapter.h. Adding an output
-// touches modelDescription.xml, variables.h and the output table in chaindrive_model.cpp only.
+// are SimulationAdapter's (simulation_adapter.h). Its public members below the constructor are
+// the hooks of the ModelAdapter concept (adapter_contract.h). Adding an output touches
+// modelDescription.xml, variables.h and the output table in chaindrive_model.cpp only.
 #pragma once
 
 #include <array>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "simulation_adapter.h"
+#include "variables.h"
 
 namespace chaindrive::fmu {
 
@@ -24,15 +25,31 @@ enum ChainDriveInput { kInCrankSpeed = 0, kInTauIntake = 1, kInTauExhaust = 2, k
 
 class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInputs> {
  public:
-  /// The first bytes of a serialized state of this model.
-  // '3': the link states laid out component by component (src/assembly/model.h)
-  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '3'};
-  static constexpr const char* kModelWord = "drive";  // (what a state must have been taken of)
-
   explicit ChainDriveModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
 
+  // ---- the hooks (adapter_contract.h) ----
+  static constexpr ModelDescription kDescription = {kModelIdentifier, kGuid, findVariable, kSolverTime, kSolverSteps};
+  static constexpr const char* kModelWord = "drive";  // (what a state must have been taken of)
+  // '3': the link states laid out component by component (src/assembly/model.h)
+  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '3'};
+
+  // the steps of prepare(): the drive, the roles of its rotors and the start state at host.time()
+  bool parametersValid();
+  bool buildModel();
+  void startSimulation();
+  void resetSettings();
+
+  void applyInputs();
+  void evaluateOutputs() { out_ = sim_->outputs(); }
+  double* realSetting(unsigned vr);  // a Real parameter or input; nullptr for others
+  std::string* stringParameter(unsigned vr);
+  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
+  bool* booleanParameter(unsigned vr) { return vr == kSolverPreload ? &params_.preload : nullptr; }
+  bool readRealOutput(unsigned vr, double& value) const;
+  bool readIntegerOutput(unsigned vr, int& value) const;
+  bool inputAcceptable(const Variable&, double) { return true; }  // (any finite speed and torque)
+
  private:
-  friend class SimulationAdapter<ChainDriveModel, kChainDriveInputs>;
   static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0};
 
   struct Parameters {
@@ -50,27 +67,11 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
            tensionerDampingExtension = -1.0;
   };
 
-  // the steps of prepare() (simulation_adapter.h): the drive, the roles of its rotors and the
-  // start state at host.time()
-  bool parametersValid();
-  bool buildModel();
-  void resetSettings();
+  // the parts of parametersValid(), buildModel() and startSimulation()
   void checkChoices(std::vector<std::string>& problems) const;
   void checkRanges(std::vector<std::string>& problems) const;
   bool applyTensionerOverrides(DriveDescription& desc);
   bool assignRoles(const Model& m);
-  void startSimulation();
-
-  // what SimulationAdapter asks of its model (simulation_adapter.h)
-  void applyInputs();
-  void evaluateOutputs() { out_ = sim_->outputs(); }
-  double* realSetting(unsigned vr);  // a Real parameter or input; nullptr for others
-  std::string* stringParameter(unsigned vr);
-  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
-  bool* booleanParameter(unsigned vr) { return vr == kSolverPreload ? &params_.preload : nullptr; }
-  bool readRealOutput(unsigned vr, double& value) const;
-  bool readIntegerOutput(unsigned vr, int& value) const;
-  bool inputAcceptable(const Variable&, double) { return true; }  // (any finite speed and torque)
 
   Parameters params_;
   RotorRoles roles_;

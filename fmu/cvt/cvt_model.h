@@ -2,8 +2,9 @@
 // simulation. Its parameters and their validation, the preparation of the CVT and its start
 // state (the nominal state at the inputs: driving speed and ratio), the inputs and the outputs by
 // value reference; the values' checks, the communication step and the FMU state's solver part are
-// SimulationAdapter's (simulation_adapter.h), as for ChainDrive.fmu. The ratio is an input the
-// sheaves follow within the description's ratio range; the clamping force a parameter.
+// SimulationAdapter's (simulation_adapter.h), as for ChainDrive.fmu. Its public members below the
+// constructor are the hooks of the ModelAdapter concept (adapter_contract.h). The ratio is an
+// input the sheaves follow within the description's ratio range; the clamping force a parameter.
 #pragma once
 
 #include <array>
@@ -13,6 +14,7 @@
 #include "cvt/cvt_description.h"
 #include "cvt/cvt_outputs.h"
 #include "simulation_adapter.h"
+#include "variables.h"
 
 namespace chaindrive::fmu {
 
@@ -21,14 +23,30 @@ enum CvtInput { kInDrivingSpeed = 0, kInLoadTorque = 1, kInRatio = 2, kCvtInputs
 
 class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
  public:
-  /// The first bytes of a serialized state of this model.
-  static constexpr char kStateMagic[8] = {'C', 'V', 'T', 'C', 'H', 'S', 'T', '2'};  // '2': the ratio input
-  static constexpr const char* kModelWord = "CVT";  // (what a state must have been taken of)
-
   explicit CvtChainModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
 
+  // ---- the hooks (adapter_contract.h) ----
+  static constexpr ModelDescription kDescription = {kModelIdentifier, kGuid, findVariable, kSolverTime, kSolverSteps};
+  static constexpr const char* kModelWord = "CVT";  // (what a state must have been taken of)
+  static constexpr char kStateMagic[8] = {'C', 'V', 'T', 'C', 'H', 'S', 'T', '2'};  // '2': the ratio input
+
+  // the steps of prepare()
+  bool parametersValid();
+  bool buildModel();
+  void startSimulation();
+  void resetSettings();
+
+  void applyInputs();
+  void evaluateOutputs();
+  double* realSetting(unsigned vr);
+  std::string* stringParameter(unsigned vr);
+  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
+  bool* booleanParameter(unsigned) { return nullptr; }
+  bool readRealOutput(unsigned vr, double& value) const;
+  bool readIntegerOutput(unsigned vr, int& value) const;
+  bool inputAcceptable(const Variable& v, double value);
+
  private:
-  friend class SimulationAdapter<CvtChainModel, kCvtInputs>;
   static constexpr std::array<double, kCvtInputs> kInputStarts = {209.43951023931953, 0.0, 1.0};
 
   struct Parameters {
@@ -39,23 +57,6 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
     double step = 5e-7;
     double clampingForce = -1.0;  // < 0: the description's
   };
-
-  // the steps of prepare() (simulation_adapter.h)
-  bool parametersValid();
-  bool buildModel();
-  void resetSettings();
-  void startSimulation();
-
-  // what SimulationAdapter asks of its model (simulation_adapter.h)
-  void applyInputs();
-  void evaluateOutputs();
-  double* realSetting(unsigned vr);
-  std::string* stringParameter(unsigned vr);
-  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
-  bool* booleanParameter(unsigned) { return nullptr; }
-  bool readRealOutput(unsigned vr, double& value) const;
-  bool readIntegerOutput(unsigned vr, int& value) const;
-  bool inputAcceptable(const Variable& v, double value);
 
   Parameters params_;
   Outputs out_;

@@ -4,8 +4,9 @@ model description.
 An importer (fmpy.build.build_platform_binary, a real-time target's toolchain) compiles every
 listed .cpp with sources/ as the only include directory, so sources/ holds:
 - the solver's stages (src/ as it is, without the command-line tools);
-- the FMU's protocol glue and this FMU's model adapter, side by side in sources/fmu/ (the
-  adapter's model_adapter.h and variables.h are the ones the protocol includes from its folder);
+- the FMU's protocol glue and this FMU's model adapter, side by side in sources/fmu/ (every
+  header has a name of its own; the adapter's <adapter>_fmu.cpp includes its <adapter>_adapter.h
+  and the glue's fmi2_functions.h from that folder);
 - the embedded default descriptions, generated as the CMake build does (cmake/EmbedText.cmake);
 - the header-only libraries (Eigen/, nlohmann/) and the FMI 2 headers, so it is self-contained.
 SUNDIALS is not in it: the files that call SUNDIALS are left out and their *_without_sundials.cpp

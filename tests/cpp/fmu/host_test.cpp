@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+#include <vector>
+
 namespace chaindrive::fmu {
 namespace {
 
@@ -31,6 +35,105 @@ TEST(ResourceDirectory, WindowsForms) {
   EXPECT_EQ(windows("file:///C:/"), "C:/");
   EXPECT_EQ(windows("file://server/share/fmu/resources"), "//server/share/fmu/resources");
   EXPECT_EQ(windows("file:////server/share/fmu/resources"), "//server/share/fmu/resources");
+}
+
+// ---- the protocol state: every transition of the FMI 2.0 state machine and of the
+// communication times is one of Host's methods, made by the protocol (fmu/instance.h) ----
+
+// Keeps a host's messages, in order.
+void collect(fmi2ComponentEnvironment env, fmi2String, fmi2Status, fmi2String, fmi2String message, ...) {
+  static_cast<std::vector<std::string>*>(env)->emplace_back(message);
+}
+
+// What a host passed to the environment.
+struct Environment {
+  std::vector<std::string> messages;
+  fmi2CallbackFunctions callbacks{collect, nullptr, nullptr, nullptr, &messages};
+};
+
+// A host with its transitions in reach, as Instance has them.
+class ProtocolHost : public Environment, public Host {
+ public:
+  ProtocolHost() : Host("test", &callbacks, nullptr, false) {}
+
+  using Host::enterErrorState;
+  using Host::getRealStatus;
+  using Host::getStatus;
+  using Host::protocolSnapshot;
+  using Host::resetProtocol;
+  using Host::restoreProtocol;
+  using Host::setExperiment;
+  using Host::startStepping;
+  using Host::stepAcceptable;
+  using Host::stepCompleted;
+  using Host::stepDiscarded;
+
+  double lastSuccessfulTime() {
+    double t = NAN;
+    EXPECT_EQ(getRealStatus(fmi2LastSuccessfulTime, &t), fmi2OK);
+    return t;
+  }
+};
+
+TEST(ProtocolState, AnExperimentSetsTheTimesOrIsRefusedWithoutChangingThem) {
+  ProtocolHost host;
+  EXPECT_FALSE(host.setExperiment(NAN, false, 0.0));
+  EXPECT_FALSE(host.setExperiment(1.0, true, 0.5));
+  EXPECT_EQ(host.messages.size(), 2u);
+  EXPECT_EQ(host.time(), 0.0);
+  ASSERT_TRUE(host.setExperiment(0.25, true, 1.0));
+  EXPECT_EQ(host.time(), 0.25);
+  EXPECT_EQ(host.lastSuccessfulTime(), 0.25);
+  EXPECT_EQ(host.state(), kInstantiated);
+}
+
+TEST(ProtocolState, AStepIsCheckedAgainstTheTimeAndTheStopTime) {
+  ProtocolHost host;
+  ASSERT_TRUE(host.setExperiment(0.0, true, 1e-3));
+  host.startStepping();
+  double tEnd = 0.0;
+  EXPECT_FALSE(host.stepAcceptable(0.0, 0.0, tEnd));      // not positive
+  EXPECT_FALSE(host.stepAcceptable(1e-4, 1e-4, tEnd));    // not from the FMU's time
+  EXPECT_FALSE(host.stepAcceptable(0.0, 2e-3, tEnd));     // past the stop time
+  EXPECT_EQ(host.messages.size(), 3u);
+  ASSERT_TRUE(host.stepAcceptable(0.0, 1e-4, tEnd));
+  EXPECT_EQ(tEnd, 1e-4);
+  host.stepCompleted(tEnd);
+  EXPECT_EQ(host.time(), 1e-4);
+  EXPECT_EQ(host.lastSuccessfulTime(), 1e-4);
+  EXPECT_EQ(host.state(), kStepComplete);
+}
+
+TEST(ProtocolState, ADiscardedStepKeepsTheTimeAndIsRestoredReadyForTheNextStep) {
+  ProtocolHost host;
+  ASSERT_TRUE(host.setExperiment(0.0, false, 0.0));
+  host.startStepping();
+  host.stepCompleted(1e-4);
+  const ProtocolSnapshot before = host.protocolSnapshot();
+  host.stepDiscarded();
+  EXPECT_EQ(host.state(), kStepFailed);
+  EXPECT_EQ(host.lastSuccessfulTime(), 1e-4);
+  fmi2Status status = fmi2OK;
+  ASSERT_EQ(host.getStatus(fmi2DoStepStatus, &status), fmi2OK);
+  EXPECT_EQ(status, fmi2Discard);
+  const ProtocolSnapshot failed = host.protocolSnapshot();
+  host.restoreProtocol(before);
+  EXPECT_EQ(host.state(), kStepComplete);
+  host.restoreProtocol(failed);  // (a state taken after the failure)
+  EXPECT_EQ(host.state(), kStepComplete);
+  EXPECT_EQ(host.time(), 1e-4);
+}
+
+TEST(ProtocolState, AResetReturnsToTheInstantiatedState) {
+  ProtocolHost host;
+  ASSERT_TRUE(host.setExperiment(2.0, true, 3.0));
+  host.enterErrorState();
+  EXPECT_EQ(host.state(), kError);
+  host.resetProtocol();
+  EXPECT_EQ(host.state(), kInstantiated);
+  EXPECT_EQ(host.time(), 0.0);
+  EXPECT_EQ(host.lastSuccessfulTime(), 0.0);
+  EXPECT_TRUE(host.initializing());
 }
 
 }  // namespace

@@ -1,21 +1,28 @@
-// The FMI 2.0 C interface of ChainDrive.fmu: pure protocol. Every entry checks the instance and
-// the allowed states, catches every exception (none crosses the C boundary) and forwards to
-// Instance and its model adapter. Unsupported functions exist (importers resolve all of them) and
-// return fmi2Error.
+// The FMI 2.0 C interface of an FMU: pure protocol, written once for every model adapter. Every
+// entry checks the instance and the allowed states, catches every exception (none crosses the C
+// boundary) and forwards to Instance and its model adapter. Unsupported functions exist
+// (importers resolve all of them) and return fmi2Error.
+//
+// The C names cannot be templates: this header defines them for chaindrive::fmu::ExportedAdapter,
+// the model adapter that the including file has named (fmu/<adapter>/<adapter>_adapter.h). One
+// file of each FMU includes it (fmu/<adapter>/<adapter>_fmu.cpp), and only that one.
+#pragma once
+
 #include <cstring>
 #include <new>
 #include <string>
 
+#include "adapter_contract.h"
 #include "fmi2Functions.h"
 #include "fmu_state.h"
 #include "instance.h"
-#include "variables.h"
-
-using chaindrive::fmu::Instance;
-using chaindrive::fmu::Snapshot;
-namespace fmu = chaindrive::fmu;
 
 namespace {
+
+namespace fmu = chaindrive::fmu;
+using fmu::ExportedAdapter;
+using Instance = fmu::Instance<ExportedAdapter>;
+using Snapshot = fmu::FmuState<ExportedAdapter>;
 
 // allowed states per function (FMI 2.0 co-simulation state machine)
 constexpr unsigned kAny = fmu::kAllStates;
@@ -50,7 +57,7 @@ fmi2Status guarded(fmi2Component c, const char* fn, unsigned mask, F&& body) {
   } catch (...) {
     in->log(fmi2Error, "logStatusError", "%s: unknown error", fn);
   }
-  in->setState(fmu::kError);
+  in->enterErrorState();
   return fmi2Error;
 }
 
@@ -65,7 +72,8 @@ bool nullArg(Instance& in, const char* fn, const char* arg, const void* p, size_
 fmi2Status unsupported(fmi2Component c, const char* fn) {
   Instance* in = cast(c);
   if (in)
-    in->log(fmi2Error, "logStatusError", "%s is not supported by %s (co-simulation only)", fn, fmu::kModelIdentifier);
+    in->log(fmi2Error, "logStatusError", "%s is not supported by %s (co-simulation only)", fn,
+            ExportedAdapter::kDescription.modelIdentifier);
   return fmi2Error;
 }
 
@@ -96,11 +104,11 @@ FMI2_Export fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
   try {
     if (!instanceName || !*instanceName) return fail("instanceName must be a non-empty string");
     if (fmuType != fmi2CoSimulation) {
-      const std::string coSimulationOnly = std::string(fmu::kModelIdentifier) +
+      const std::string coSimulationOnly = std::string(ExportedAdapter::kDescription.modelIdentifier) +
                                            " supports co-simulation only (fmuType must be fmi2CoSimulation)";
       return fail(coSimulationOnly.c_str());
     }
-    if (!fmuGUID || std::strcmp(fmuGUID, fmu::kGuid) != 0)
+    if (!fmuGUID || std::strcmp(fmuGUID, ExportedAdapter::kDescription.guid) != 0)
       return fail("the GUID does not match this binary's modelDescription.xml (wrong or mixed-up FMU files)");
     return new Instance(instanceName, functions, fmuResourceLocation, loggingOn != fmi2False);
   } catch (const std::exception& e) {
@@ -117,11 +125,10 @@ FMI2_Export void fmi2FreeInstance(fmi2Component c) {
   }
 }
 
-FMI2_Export fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
+FMI2_Export fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean /*toleranceDefined*/, fmi2Real /*tolerance*/,
                                            fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
   return guarded(c, "fmi2SetupExperiment", kMaskSetupExperiment, [&](Instance& in) {
-    return in.setupExperiment(toleranceDefined != fmi2False, tolerance, startTime, stopTimeDefined != fmi2False,
-                              stopTime);
+    return in.setupExperiment(startTime, stopTimeDefined != fmi2False, stopTime);
   });
 }
 
