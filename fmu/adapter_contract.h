@@ -29,7 +29,7 @@ concept ModelAdapter =
     std::derived_from<A, SimulationAdapter<A, A::kInputs>> && std::constructible_from<A, Host&> &&
     requires(A& a, const A& c, unsigned vr, double& real, int& integer, const Variable& v) {
       // what the FMU is
-      { A::kDescription } -> std::same_as<const ModelDescription&>;  // its variables.h: identifier, GUID, variables
+      { A::kDescription } -> std::same_as<const ModelDescription&>;  // its <adapter>_variables.h: identifier, GUID, variables
       { A::kModelWord } -> std::convertible_to<const char*>;  // what its descriptions describe, for messages
       { A::kStateMagic } -> std::same_as<const char (&)[8]>;  // the first bytes of its serialized FMU states
       // the steps of SimulationAdapter::prepare()

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -327,6 +328,36 @@ class SimulationAdapter {
     return builtIn();
   }
 
+  /// A choice parameter's name parsed once (choice.h); an unknown name is a problem naming the
+  /// parameter and the allowed names.
+  template <class E>
+  static void parseChoiceParameter(const char* parameter, const std::string& name, E& value,
+                                   std::vector<std::string>& problems) {
+    if (auto parsed = choiceOf<E>(name)) value = *parsed;
+    else problems.push_back(std::string(parameter) + ": " + unknownChoiceText(name, choiceNames<E>()));
+  }
+  /// The same for a parameter whose empty name leaves the choice to the description (nullopt).
+  template <class E>
+  static void parseChoiceParameter(const char* parameter, const std::string& name, std::optional<E>& value,
+                                   std::vector<std::string>& problems) {
+    value.reset();
+    if (name.empty()) return;
+    if (auto parsed = choiceOf<E>(name)) value = *parsed;
+    else problems.push_back(std::string(parameter) + ": " + unknownChoiceText(name, choiceNames<E>()) +
+                            " (or empty: the " + Derived::kModelWord + "'s)");
+  }
+
+  /// The combination rules of a run's choices (run/simulation.h) for `opt` on model_, each one
+  /// broken logged under its parameter's name; false if one was.
+  bool choicesCombine(const SimulationOptions& opt) {
+    static constexpr const char* kParameters[] = {"fidelity", "contact.method", "chain.jointModel", "solver.method",
+                                                  "rigid pins"};
+    const auto problems = combinationProblems(*model_, runChoices(*model_, opt));
+    for (const auto& p : problems)
+      host_.log(fmi2Error, "logStatusError", "%s: %s", kParameters[static_cast<int>(p.choice)], p.text.c_str());
+    return problems.empty();
+  }
+
   /// No model, no simulation: prepare() runs again.
   void dropSimulation() {
     sim_.reset();
@@ -354,7 +385,7 @@ class SimulationAdapter {
   /// After the simulation started: the fidelity and the time grid logged, the run's counters
   /// started over.
   void runStarted() {
-    host_.log(fmi2OK, "logEvents", "fidelity: %s (%zu states)", sim_->fidelity().c_str(), sim_->state().size());
+    host_.log(fmi2OK, "logEvents", "fidelity: %s (%zu states)", choiceName(sim_->fidelity()), sim_->state().size());
     const TimeGrid& grid = sim_->grid();
     host_.log(fmi2OK, "logEvents",
               "time grid: t_k = %.17g s + k %.17g s; a communication point within %.3g s of a grid point is that "

@@ -1,4 +1,4 @@
-// What every FMU's variable table is made of (each FMU's variables.h lists its variables, which
+// What every FMU's variable table is made of (each FMU's <adapter>_variables.h lists its variables, which
 // mirror its model description), and what the protocol reads of it.
 #pragma once
 
@@ -17,7 +17,7 @@ struct Variable {
   const char* start;  // start value as written in the model description ("" for outputs)
 };
 
-/// What the protocol reads of an FMU's modelDescription.xml, from the variables.h of its model
+/// What the protocol reads of an FMU's modelDescription.xml, from the <adapter>_variables.h of its model
 /// adapter (every model adapter names its own: adapter_contract.h).
 struct ModelDescription {
   const char* modelIdentifier;

@@ -67,54 +67,31 @@ bool ChainDriveModel::buildModel() {
       describedBy(params_.driveFile, "default_drive.json", "drive", loadDriveDescription, defaultDriveDescription);
   if (!applyTensionerOverrides(desc)) return false;
   model_ = std::make_shared<const Model>(assemble(desc));
-  return assignRoles(*model_);
+  return assignRoles(*model_) && choicesCombine(simulationOptions());
 }
 
 void ChainDriveModel::resetSettings() {
   params_ = Parameters{};
+  choices_ = Choices{};
   in_ = kInputStarts;
 }
 
 // Every parameter problem is logged (all of them at once); false if there was one.
 bool ChainDriveModel::parametersValid() {
   std::vector<std::string> problems;
-  checkChoices(problems);
+  parseChoices(problems);
   checkRanges(problems);
   for (const auto& p : problems) host_.log(fmi2Error, "logStatusError", "%s", p.c_str());
   return problems.empty();
 }
 
-// The named choices: fidelity, integrator, contact method, joint model.
-void ChainDriveModel::checkChoices(std::vector<std::string>& problems) const {
-  const bool span = params_.fidelity == "span";
-  if (!span && params_.fidelity != "link")
-    problems.push_back("fidelity: '" + params_.fidelity + "' is unknown; allowed: link, span");
-  bool knownMethod = false;
-  std::string methods;
-  for (const auto& n : integratorNames()) {
-    knownMethod = knownMethod || n == params_.method;
-    methods += (methods.empty() ? "" : ", ") + n;
-  }
-  if (!knownMethod) problems.push_back("solver.method: '" + params_.method + "' is unknown; allowed: " + methods);
-  if (!params_.contactMethod.empty() && params_.contactMethod != "compliant" && params_.contactMethod != "event-driven" &&
-      params_.contactMethod != "time-stepping")
-    problems.push_back("contact.method: '" + params_.contactMethod +
-                       "' is unknown; allowed: compliant, event-driven, time-stepping (or empty: the drive's)");
-  if (!params_.jointModel.empty() && params_.jointModel != "journal-bearing" && params_.jointModel != "ideal")
-    problems.push_back("chain.jointModel: '" + params_.jointModel +
-                       "' is unknown; allowed: journal-bearing, ideal (or empty: the drive's)");
-  // the span fidelity has spans, no contacts, and takes its span stiffness from journal bearings
-  // (a drive description that asks for other ones is refused when the simulation is built)
-  if (span && (params_.contactMethod == "event-driven" || params_.contactMethod == "time-stepping"))
-    problems.push_back("contact.method: '" + params_.contactMethod +
-                       "' does not apply to fidelity 'span'; allowed with it: compliant (or empty: the drive's)");
-  const bool linkOnly = params_.method == "fixed-newmark" || params_.method.rfind("fixed-verlet-implicit", 0) == 0;
-  if (span && linkOnly)
-    problems.push_back("solver.method: '" + params_.method + "' does not apply to fidelity 'span' (its implicit part "
-                       "is the links' joints and contacts); allowed with it: the other methods");
-  if (span && params_.jointModel == "ideal")
-    problems.push_back("chain.jointModel: 'ideal' does not apply to fidelity 'span'; allowed with it: journal-bearing "
-                       "(or empty: the drive's)");
+// The named choices (fidelity, integrator, contact method, joint model), parsed once; how they
+// combine is checked with the drive (buildModel).
+void ChainDriveModel::parseChoices(std::vector<std::string>& problems) {
+  parseChoiceParameter("fidelity", params_.fidelity, choices_.fidelity, problems);
+  parseChoiceParameter("solver.method", params_.method, choices_.method, problems);
+  parseChoiceParameter("contact.method", params_.contactMethod, choices_.contacts, problems);
+  parseChoiceParameter("chain.jointModel", params_.jointModel, choices_.joints, problems);
 }
 
 // The numbers: solver tolerance and step, the tensioner overrides (negative: as in the drive).
@@ -174,20 +151,25 @@ bool ChainDriveModel::assignRoles(const Model& m) {
   return true;
 }
 
-// The simulation of model_ with the solver parameters, at its start state on the time grid.
-void ChainDriveModel::startSimulation() {
+// The solver parameters as the simulation takes them.
+SimulationOptions ChainDriveModel::simulationOptions() const {
   SimulationOptions opt;
-  opt.fidelity = params_.fidelity;
-  opt.integrator.method = params_.method;
+  opt.fidelity = choices_.fidelity;
+  opt.integrator.method = choices_.method;
   opt.integrator.adaptive.rtol = params_.tolerance;
   opt.integrator.fixed.step = params_.step;
   opt.integrator.newmark.gamma = params_.newmarkGamma;
   opt.integrator.adaptive.stopAtOutputs = true;
-  opt.contactMethod = params_.contactMethod;
-  opt.jointModel = params_.jointModel;
+  opt.contactMethod = choices_.contacts;
+  opt.jointModel = choices_.joints;
   opt.preload.enabled = params_.preload;
   opt.monitoredLink = params_.linkIndex;
-  makeSimulation(opt);
+  return opt;
+}
+
+// The simulation of model_ with the solver parameters, at its start state on the time grid.
+void ChainDriveModel::startSimulation() {
+  makeSimulation(simulationOptions());
   sim_->start(host_.time());
   // what the start state solve found
   const PreloadReport& rep = sim_->preloadReport();

@@ -3,15 +3,16 @@
 // value reference; the values' checks, the communication step and the FMU state's solver part
 // are SimulationAdapter's (simulation_adapter.h). Its public members below the constructor are
 // the hooks of the ModelAdapter concept (adapter_contract.h). Adding an output touches
-// modelDescription.xml, variables.h and the output table in chaindrive_model.cpp only.
+// modelDescription.xml, chaindrive_variables.h and the output table in chaindrive_model.cpp only.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "simulation_adapter.h"
-#include "variables.h"
+#include "chaindrive_variables.h"
 
 namespace chaindrive::fmu {
 
@@ -67,13 +68,24 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
            tensionerDampingExtension = -1.0;
   };
 
+  /// The choice parameters parsed (parametersValid), as SimulationOptions takes them.
+  struct Choices {
+    IntegratorMethod method = IntegratorMethod::FixedVerlet;
+    std::optional<ContactMethod> contacts;  // none: the drive's
+    std::optional<JointModel> joints;       // none: the drive's
+    Fidelity fidelity = Fidelity::Link;
+  };
+
   // the parts of parametersValid(), buildModel() and startSimulation()
-  void checkChoices(std::vector<std::string>& problems) const;
+  void parseChoices(std::vector<std::string>& problems);
   void checkRanges(std::vector<std::string>& problems) const;
   bool applyTensionerOverrides(DriveDescription& desc);
   bool assignRoles(const Model& m);
 
+  SimulationOptions simulationOptions() const;
+
   Parameters params_;
+  Choices choices_;
   RotorRoles roles_;
   Outputs out_;
 };

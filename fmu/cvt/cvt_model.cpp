@@ -43,10 +43,6 @@ constexpr RealOutput kRealOutputs[] = {
 };
 // clang-format on
 
-// The methods a CVT runs with (Simulation refuses the others, cvt/ and simulation.cpp).
-const char* const kCvtMethods[] = {"fixed-verlet", "fixed-verlet-implicit-joint-damping", "arkode-erk",
-                                   "arkode-erk-fixed"};
-
 }  // namespace
 
 // ---- preparation ----
@@ -69,7 +65,7 @@ bool CvtChainModel::buildModel() {
               params_.linkIndex, model_->chain.links - 1);
     return false;
   }
-  return true;
+  return choicesCombine(simulationOptions());
 }
 
 void CvtChainModel::resetSettings() {
@@ -80,14 +76,7 @@ void CvtChainModel::resetSettings() {
 // Every parameter problem is logged (all of them at once); false if there was one.
 bool CvtChainModel::parametersValid() {
   std::vector<std::string> problems;
-  bool known = false;
-  std::string methods;
-  for (const char* m : kCvtMethods) {
-    known = known || params_.method == m;
-    methods += (methods.empty() ? "" : ", ") + std::string(m);
-  }
-  if (!known)
-    problems.push_back("solver.method: '" + params_.method + "' is not one a CVT runs with; allowed: " + methods);
+  parseChoiceParameter("solver.method", params_.method, method_, problems);
   if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
     problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
   if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
@@ -99,16 +88,21 @@ bool CvtChainModel::parametersValid() {
   return problems.empty();
 }
 
-// The simulation from the nominal state at the driving speed input (the chain moving with the
-// pulleys, pre-tensioned by the clamping force), on the time grid from the start time.
-void CvtChainModel::startSimulation() {
+// The solver parameters as the simulation takes them.
+SimulationOptions CvtChainModel::simulationOptions() const {
   SimulationOptions opt;
-  opt.integrator.method = params_.method;
+  opt.integrator.method = method_;
   opt.integrator.adaptive.rtol = params_.tolerance;
   opt.integrator.fixed.step = params_.step;
   opt.integrator.adaptive.stopAtOutputs = true;
   opt.monitoredLink = params_.linkIndex;
-  makeSimulation(opt);
+  return opt;
+}
+
+// The simulation from the nominal state at the driving speed input (the chain moving with the
+// pulleys, pre-tensioned by the clamping force), on the time grid from the start time.
+void CvtChainModel::startSimulation() {
+  makeSimulation(simulationOptions());
   sim_->startFrom(host_.time(), cvtNominalState(*model_, in_[kInDrivingSpeed]));
   for (const std::string& note : model_->assembly.notes) host_.log(fmi2OK, "logEvents", "assembly: %s", note.c_str());
   runStarted();

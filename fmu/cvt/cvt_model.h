@@ -14,7 +14,7 @@
 #include "cvt/cvt_description.h"
 #include "cvt/cvt_outputs.h"
 #include "simulation_adapter.h"
-#include "variables.h"
+#include "cvt_variables.h"
 
 namespace chaindrive::fmu {
 
@@ -58,7 +58,10 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
     double clampingForce = -1.0;  // < 0: the description's
   };
 
+  SimulationOptions simulationOptions() const;
+
   Parameters params_;
+  IntegratorMethod method_ = IntegratorMethod::FixedVerlet;  // solver.method parsed (parametersValid)
   Outputs out_;
   CvtOutputs cvt_;
 };

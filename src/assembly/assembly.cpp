@@ -139,7 +139,7 @@ void throwIfAny(const std::vector<std::string>& problems) {
 // The model's contact law as described: the force model by name, its parameters as given.
 ContactLaw contactLawFromDescription(const ContactLawDesc& c) {
   ContactLaw l;
-  l.huntCrossley = c.model == "hunt-crossley";
+  l.huntCrossley = c.model == ContactLawModel::HuntCrossley;
   l.stiffness = c.stiffness;
   l.exponent = c.exponent;
   l.dampingFactor = c.dampingFactor;

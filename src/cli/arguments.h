@@ -31,6 +31,12 @@ class Arguments {
   /// std::invalid_argument ("option X: 'S' is not a number"; std::stod's own when S does not
   /// start with a number).
   double number(const std::string& text) const;
+  /// value() as a choice (choice.h); throws std::invalid_argument ("option X: 'S' is unknown;
+  /// allowed: ...").
+  template <class E>
+  E choice() {
+    return parseChoice<E>(value(), "option " + current_);
+  }
 
  private:
   int argc_;

@@ -57,20 +57,6 @@ struct CvtArguments {
   bool quiet = false;
 };
 
-// A method name: an integrator of the compliant pins, or time stepping (the contact method) with
-// compliant or rigid pins.
-void setMethod(const std::string& name, CvtRunOptions& run) {
-  const bool stepping = name == "time-stepping" || name == "time-stepping-rigid-pins";
-  run.contactMethod = stepping ? "time-stepping" : "compliant";
-  run.integrator.rigid.rigidPins = name == "time-stepping-rigid-pins";
-  if (!stepping) run.integrator.method = name;
-}
-
-std::string methodName(const CvtRunOptions& run) {
-  if (run.contactMethod == "compliant") return run.integrator.method;
-  return run.integrator.rigid.rigidPins ? run.contactMethod + "-rigid-pins" : run.contactMethod;
-}
-
 CvtArguments parseArguments(cli::Arguments& args) {
   CvtArguments r;
   while (args.next()) {
@@ -81,7 +67,7 @@ CvtArguments parseArguments(cli::Arguments& args) {
     else if (a == "--duration") r.run.duration = args.number();
     else if (a == "--revolutions") r.revolutions = args.number();
     else if (a == "--output-step") r.run.outputStep = args.number();
-    else if (a == "--method") setMethod(args.value(), r.run);
+    else if (a == "--method") setCvtMethod(args.choice<CvtMethod>(), r.run);
     else if (a == "--friction-facets") r.run.integrator.rigid.frictionFacets = static_cast<int>(args.number());
     else if (a == "--step") r.run.integrator.fixed.step = r.run.integrator.adaptive.maxStep = args.number();
     else if (a == "--rtol") r.run.integrator.adaptive.rtol = args.number();
@@ -130,7 +116,7 @@ nlohmann::json summaryJson(const Model& m, const CvtLayout& layout, const CvtRun
                    {"pretension", layout.pretension},
                    {"clampingForce", {layout.clampingForce[0], layout.clampingForce[1]}},
                    {"closureResidual", m.assembly.closureResidual}};
-  j["run"] = {{"method", methodName(run)}, {"step", run.integrator.fixed.step},
+  j["run"] = {{"method", choiceName(cvtMethodOf(run))}, {"step", run.integrator.fixed.step},
               {"rtol", run.integrator.adaptive.rtol},
               {"drivingSpeed_rpm", run.drivingSpeed * 30.0 / kPi}, {"loadTorque", run.loadTorque},
               {"duration", run.duration}, {"steps", r.steps}, {"cpuSeconds", r.cpuSeconds},

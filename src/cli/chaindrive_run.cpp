@@ -37,8 +37,7 @@ double cpuSeconds() {
 }
 
 void usage() {
-  std::string names;
-  for (const auto& n : integratorNames()) names += (names.empty() ? "" : ", ") + n;
+  const std::string names = listOfNames(choiceNames<IntegratorMethod>());
   std::printf(
       "usage: chaindrive-run [options]\n"
       "  --drive FILE            drive description (default: the embedded default drive)\n"
@@ -130,10 +129,10 @@ const Option kOptions[] = {
   {"--rpm",               [](Arguments& a, RunArguments& r) { r.rpm = a.number(); }},
   {"--cycles",            [](Arguments& a, RunArguments& r) { r.cycles = a.number(); }},
   {"--duration",          [](Arguments& a, RunArguments& r) { r.duration = a.number(); }},
-  {"--integrator",        [](Arguments& a, RunArguments& r) { r.opt.integrator.method = a.value(); }},
-  {"--contact-method",    [](Arguments& a, RunArguments& r) { r.opt.contactMethod = a.value(); }},
-  {"--joint-model",       [](Arguments& a, RunArguments& r) { r.opt.jointModel = a.value(); }},
-  {"--fidelity",          [](Arguments& a, RunArguments& r) { r.opt.fidelity = a.value(); }},
+  {"--integrator",        [](Arguments& a, RunArguments& r) { r.opt.integrator.method = a.choice<IntegratorMethod>(); }},
+  {"--contact-method",    [](Arguments& a, RunArguments& r) { r.opt.contactMethod = a.choice<ContactMethod>(); }},
+  {"--joint-model",       [](Arguments& a, RunArguments& r) { r.opt.jointModel = a.choice<JointModel>(); }},
+  {"--fidelity",          [](Arguments& a, RunArguments& r) { r.opt.fidelity = a.choice<Fidelity>(); }},
   {"--rebound-threshold", [](Arguments& a, RunArguments& r) { r.opt.integrator.eventDriven.reboundThreshold = a.number(); }},
   {"--gap-tolerance",     [](Arguments& a, RunArguments& r) { r.opt.integrator.rigid.gapTolerance = a.number(); }},
   {"--record-lcps",       recordLcps},
@@ -207,7 +206,7 @@ double startRun(Simulation& sim, const Model& m, const RunArguments& r) {
   const double cpuPreload = cpuSeconds() - cpu0;
   if (!r.quiet) {
     std::printf("drive: %s (%d links, %zu rotors, %s fidelity, %zu states)\n", m.name.c_str(), m.chain.links,
-                m.rotors.size(), sim.fidelity().c_str(), sim.state().size());
+                m.rotors.size(), choiceName(sim.fidelity()), sim.state().size());
     if (const span::SpanModel* sm = sim.spanModel())
       for (const std::string& note : sm->notes) std::printf("  %s\n", note.c_str());
     if (r.initialState.empty())
@@ -294,7 +293,8 @@ RunResult integrate(Simulation& sim, const RunArguments& r, double t0, double tE
 
 // The method that ran: the integrator for compliant contacts, else the contact method.
 std::string methodName(const Simulation& sim, const RunArguments& r) {
-  return sim.contactMethod() == "compliant" ? r.opt.integrator.method : sim.contactMethod();
+  if (sim.contactMethod() == ContactMethod::Compliant) return choiceName(r.opt.integrator.method);
+  return choiceName(sim.contactMethod());
 }
 
 void printContactStats(const Simulation& sim, const ns::NsStats& cs, double tReached) {
@@ -302,7 +302,7 @@ void printContactStats(const Simulation& sim, const ns::NsStats& cs, double tRea
   auto f = [](long long v) { return static_cast<double>(v); };
   std::printf("contact method %s: per simulated second %.0f steps, %.0f events, %.0f impacts, %.0f LCP solves, "
               "mean LCP size %.1f, max %lld, %.0f pivots, %.0f regularized LCPs\n",
-              sim.contactMethod().c_str(), f(cs.steps) * per, f(cs.events) * per, f(cs.impacts) * per,
+              choiceName(sim.contactMethod()), f(cs.steps) * per, f(cs.events) * per, f(cs.impacts) * per,
               f(cs.lcpSolves) * per, cs.lcpSolves ? f(cs.lcpSizeSum) / f(cs.lcpSolves) : 0.0, cs.lcpSizeMax,
               f(cs.pivots) * per, f(cs.regularizedLcps) * per);
 }
@@ -327,8 +327,8 @@ void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult&
   const IntegratorStats st = sim.integratorStats();
   nlohmann::json j;
   j["status"] = res.status == 0 ? "ok" : "failed";
-  j["fidelity"] = sim.fidelity();
-  j["contactMethod"] = sim.contactMethod();
+  j["fidelity"] = choiceName(sim.fidelity());
+  j["contactMethod"] = choiceName(sim.contactMethod());
   j["method"] = methodName(sim, r);
   j["rpm"] = r.rpm;
   j["startTime"] = t0;

@@ -31,8 +31,8 @@ void readChain(Fields& top, CvtDescription& d) {
   d.linkMass = c.number("linkMass", 0.0, 10.0, std::nullopt, "kg", true);
   d.linkInertia = c.number("linkInertia", 0.0, 1.0, std::nullopt, "kg m^2", true);
   readJoint(c.object("joint", true), d.joint);
-  if (d.joint.model != "journal-bearing")
-    c.problem(c.at("joint.model"), "'" + d.joint.model + "': a CVT chain's joints are 'journal-bearing' (the rolling "
+  if (d.joint.model != JointModel::JournalBearing)
+    c.problem(c.at("joint.model"), "'" + std::string(choiceName(d.joint.model)) + "': a CVT chain's joints are 'journal-bearing' (the rolling "
                                    "pins as a stiff spring-damper); ideal joints need a rigid-contact method, "
                                    "which does not handle the pin-sheave contacts");
   Fields pin = c.object("pin", true);

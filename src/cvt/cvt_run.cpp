@@ -28,6 +28,29 @@ struct Mean {
 
 }  // namespace
 
+// The compliant pins' integrators, in both directions.
+constexpr std::pair<CvtMethod, IntegratorMethod> kCvtIntegrators[] = {
+    {CvtMethod::FixedVerlet, IntegratorMethod::FixedVerlet},
+    {CvtMethod::FixedVerletImplicitJointDamping, IntegratorMethod::FixedVerletImplicitJointDamping},
+    {CvtMethod::ArkodeErk, IntegratorMethod::ArkodeErk},
+    {CvtMethod::ArkodeErkFixed, IntegratorMethod::ArkodeErkFixed}};
+
+void setCvtMethod(CvtMethod method, CvtRunOptions& run) {
+  const bool stepping = method == CvtMethod::TimeStepping || method == CvtMethod::TimeSteppingRigidPins;
+  run.contactMethod = stepping ? ContactMethod::TimeStepping : ContactMethod::Compliant;
+  run.integrator.rigid.rigidPins = method == CvtMethod::TimeSteppingRigidPins;
+  for (const auto& [cvt, integrator] : kCvtIntegrators)
+    if (cvt == method) run.integrator.method = integrator;
+}
+
+CvtMethod cvtMethodOf(const CvtRunOptions& run) {
+  if (run.contactMethod == ContactMethod::TimeStepping)
+    return run.integrator.rigid.rigidPins ? CvtMethod::TimeSteppingRigidPins : CvtMethod::TimeStepping;
+  for (const auto& [cvt, integrator] : kCvtIntegrators)
+    if (integrator == run.integrator.method) return cvt;
+  throw std::invalid_argument(std::string("integrator '") + choiceName(run.integrator.method) + "' is not a CVT method");
+}
+
 CvtRunResult runCvt(std::shared_ptr<const Model> m, const CvtRunOptions& opt) {
   SimulationOptions so;
   so.integrator = opt.integrator;

@@ -24,16 +24,43 @@ struct CvtRunOptions {
   double duration = 0.2;          // [s]
   double outputStep = 5e-5;       // [s]
   double statisticsFrom = 0.5;    // the means start at this fraction of the duration
-  std::string contactMethod = "compliant";  // or "time-stepping": the pins' friction as complementarity
+  ContactMethod contactMethod = ContactMethod::Compliant;  // or time stepping: the pins' friction as
+                                                          // complementarity
   IntegratorSettings integrator;  // method and step (default: fixed-verlet at 2 us; time stepping: its step)
   int monitoredLink = -1;         // the pin of the Figure 9 outputs (-1: the model's)
   std::optional<StateSnapshot> start;  // a saved state to start from (else the nominal state at 0);
                                        // the run lasts `duration` from its time
   CvtRunOptions() {
-    integrator.method = "fixed-verlet";
+    integrator.method = IntegratorMethod::FixedVerlet;
     integrator.fixed.step = 2e-6;
   }
 };
+
+/// A CVT run's method by one name: an integrator of the compliant pins, or time stepping (the
+/// pins' friction as complementarity) with compliant or axially rigid pins.
+enum class CvtMethod {
+  FixedVerlet,
+  FixedVerletImplicitJointDamping,
+  ArkodeErk,
+  ArkodeErkFixed,
+  TimeStepping,
+  TimeSteppingRigidPins
+};
+template <>
+struct ChoiceNames<CvtMethod> {
+  static constexpr ChoiceName<CvtMethod> table[] = {
+      {CvtMethod::FixedVerlet, "fixed-verlet"},
+      {CvtMethod::FixedVerletImplicitJointDamping, "fixed-verlet-implicit-joint-damping"},
+      {CvtMethod::ArkodeErk, "arkode-erk"},
+      {CvtMethod::ArkodeErkFixed, "arkode-erk-fixed"},
+      {CvtMethod::TimeStepping, "time-stepping"},
+      {CvtMethod::TimeSteppingRigidPins, "time-stepping-rigid-pins"}};
+};
+
+/// Sets the contact method, the integrator and the pins' rigidity of `method`.
+void setCvtMethod(CvtMethod method, CvtRunOptions& run);
+/// The method `run` is set to.
+CvtMethod cvtMethodOf(const CvtRunOptions& run);
 
 struct CvtSample {
   double time = 0.0;

@@ -235,16 +235,16 @@ void readTensioner(Fields& top, DriveDescription& desc) {
 ContactLawDesc readContactLaw(Fields f) {
   ContactLawDesc c;
   if (!f.valid()) return c;
-  c.model = f.string("model", {"hunt-crossley", "spring-damper"}, std::string("hunt-crossley"));
+  c.model = f.choice<ContactLawModel>("model", ContactLawModel::HuntCrossley);
   c.stiffness = f.number("stiffness", 0.0, 1e12, std::nullopt, "N/m^exponent", true);
   c.exponent = f.number("exponent", 1.0, 2.0, 1.0, "");
   c.dampingFactor = f.number("dampingFactor", 0.0, 100.0, 0.0, "s/m");
   c.damping = f.number("damping", 0.0, 1e7, 0.0, "N s/m");
   c.friction = f.number("friction", 0.0, 2.0, 0.0, "");
   c.restitution = f.number("restitution", 0.0, 1.0, 0.5, "");
-  if (c.model == "hunt-crossley" && f.has("damping"))
+  if (c.model == ContactLawModel::HuntCrossley && f.has("damping"))
     f.problem(f.at("damping"), "not used by model 'hunt-crossley' (give 'dampingFactor' in s/m)");
-  if (c.model == "spring-damper" && f.has("dampingFactor"))
+  if (c.model == ContactLawModel::SpringDamper && f.has("dampingFactor"))
     f.problem(f.at("dampingFactor"), "not used by model 'spring-damper' (give 'damping' in N s/m)");
   f.finish();
   return c;
@@ -254,7 +254,7 @@ ContactLawDesc readContactLaw(Fields f) {
 void readContact(Fields& top, DriveDescription& desc) {
   Fields f = top.object("contact", true);
   if (!f.valid()) return;
-  desc.contact.method = f.string("method", {"compliant", "event-driven", "time-stepping"}, std::string("compliant"));
+  desc.contact.method = f.choice<ContactMethod>("method", ContactMethod::Compliant);
   desc.contact.frictionRegularization = f.number("frictionRegularization", 1e-6, 10.0, 0.05, "m/s");
   desc.contact.rollerSprocket = readContactLaw(f.object("rollerSprocket", true));
   desc.contact.plateGuide = readContactLaw(f.object("plateGuide", !desc.guides.empty()));
@@ -393,7 +393,7 @@ void checkClosureInRoute(const DriveDescription& desc, std::vector<std::string>&
 // The pin-bushing joint of the links (journal bearing or ideal).
 void readJoint(Fields jt, JointDesc& joint) {
   if (!jt.valid()) return;
-  joint.model = jt.string("model", {"journal-bearing", "ideal"}, std::string("journal-bearing"));
+  joint.model = jt.choice<JointModel>("model", JointModel::JournalBearing);
   joint.stiffness = jt.number("stiffness", 0.0, 1e12, std::nullopt, "N/m", true);
   joint.damping = jt.number("damping", 0.0, 1e6, 0.0, "N s/m");
   joint.clearance = jt.number("clearance", 0.0, 1e-3, 0.0, "m");

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "description/choices.h"
 #include "math/vec2.h"
 
 namespace chaindrive {
@@ -43,7 +44,7 @@ struct SprocketDesc {
 };
 
 struct JointDesc {
-  std::string model = "journal-bearing";  // radial spring-damper (paper Fig. 2), or "ideal" (bilateral constraints)
+  JointModel model = JointModel::JournalBearing;  // radial spring-damper (paper Fig. 2) or ideal (bilateral constraints)
   double stiffness = 0.0;                 // [N/m] radial, per joint (the link's longitudinal stiffness)
   double damping = 0.0;                   // [N s/m]
   double clearance = 0.0;                 // [m] radial clearance of the journal bearing
@@ -99,7 +100,7 @@ struct TensionerDesc {
 };
 
 struct ContactLawDesc {
-  std::string model = "hunt-crossley";  // "hunt-crossley" or "spring-damper"
+  ContactLawModel model = ContactLawModel::HuntCrossley;
   double stiffness = 0.0;    // k [N/m^exponent]
   double exponent = 1.0;     // n: F = k delta^n (...)
   double dampingFactor = 0.0;  // hunt-crossley: F = k delta^n (1 + 1.5 alpha delta_dot) [s/m]
@@ -109,7 +110,7 @@ struct ContactLawDesc {
 };
 
 struct ContactDesc {
-  std::string method = "compliant";      // "compliant", "event-driven" or "time-stepping"
+  ContactMethod method = ContactMethod::Compliant;  // a force law, or rigid contacts (event driven, time stepping)
   double frictionRegularization = 0.05;  // [m/s] velocity scale of the regularised Coulomb law
   ContactLawDesc rollerSprocket;
   ContactLawDesc plateGuide;

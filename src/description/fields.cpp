@@ -122,7 +122,7 @@ std::string Fields::string(const std::string& key, const std::vector<std::string
   if (!allowed.empty()) {
     bool ok = false;
     for (const auto& a : allowed) ok = ok || a == s;
-    if (!ok) problem(at(key), "'" + s + "' is not allowed" + allowedText(allowed));
+    if (!ok) problem(at(key), unknownChoiceText(s, allowed));
   } else if (s.empty()) {
     problem(at(key), "must not be empty");
   }
@@ -218,9 +218,7 @@ std::string Fields::rangeText(double lo, double hi, const char* unit, bool loOpe
 
 std::string Fields::allowedText(const std::vector<std::string>& allowed) {
   if (allowed.empty()) return "";
-  std::string s = "; allowed: ";
-  for (std::size_t i = 0; i < allowed.size(); ++i) s += (i ? ", " : "") + std::string("'") + allowed[i] + "'";
-  return s;
+  return "; allowed: " + listOfNames(allowed);
 }
 
 }  // namespace chaindrive

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "choice.h"
 #include "description/drive_description.h"
 #include "math/vec2.h"
 
@@ -47,6 +48,12 @@ class Fields {
   int integer(const std::string& key, int lo, int hi, std::optional<int> dflt);
   /// A string out of `allowed` (any non-empty string when `allowed` is empty).
   std::string string(const std::string& key, const std::vector<std::string>& allowed, std::optional<std::string> dflt);
+  /// A choice by its name (choice.h). Missing: the default if given, else a problem.
+  template <class E>
+  E choice(const std::string& key, std::optional<E> dflt) {
+    const std::string name = string(key, choiceNames<E>(), dflt ? std::optional<std::string>(choiceName(*dflt)) : std::nullopt);
+    return choiceOf<E>(name).value_or(dflt.value_or(ChoiceNames<E>::table[0].value));
+  }
   bool boolean(const std::string& key, bool dflt);
   Vec2 vec2(const std::string& key, double bound, std::optional<Vec2> dflt, const char* unit);
   std::vector<std::string> strings(const std::string& key, bool required);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "choice.h"
 #include "failure.h"
 
 namespace chaindrive {
@@ -115,10 +116,34 @@ struct EventDrivenOptions {
   double maxEventsPerSecond = 2e5;    // a higher rate is a runaway-event failure
 };
 
-/// The method by name and the options of every method; each method is built from its own
+/// The integrator methods of the smooth systems (compliant contacts).
+enum class IntegratorMethod {
+  CvodeBdfKlu,
+  CvodeBdfBand,
+  ArkodeErk,
+  ArkodeErkFixed,
+  FixedVerlet,
+  FixedVerletImplicitDamping,
+  FixedVerletImplicitJointDamping,
+  FixedNewmark
+};
+template <>
+struct ChoiceNames<IntegratorMethod> {
+  static constexpr ChoiceName<IntegratorMethod> table[] = {
+      {IntegratorMethod::CvodeBdfKlu, "cvode-bdf-klu"},
+      {IntegratorMethod::CvodeBdfBand, "cvode-bdf-band"},
+      {IntegratorMethod::ArkodeErk, "arkode-erk"},
+      {IntegratorMethod::ArkodeErkFixed, "arkode-erk-fixed"},
+      {IntegratorMethod::FixedVerlet, "fixed-verlet"},
+      {IntegratorMethod::FixedVerletImplicitDamping, "fixed-verlet-implicit-damping"},
+      {IntegratorMethod::FixedVerletImplicitJointDamping, "fixed-verlet-implicit-joint-damping"},
+      {IntegratorMethod::FixedNewmark, "fixed-newmark"}};
+};
+
+/// The method and the options of every method; each method is built from its own
 /// groups only (makeIntegrator, RigidIntegrator).
 struct IntegratorSettings {
-  std::string method = "arkode-erk";  // see integratorNames()
+  IntegratorMethod method = IntegratorMethod::ArkodeErk;
   AdaptiveOptions adaptive;
   FixedStepOptions fixed;
   NewmarkOptions newmark;
@@ -152,8 +177,7 @@ class Integrator {
   virtual void setInitialStep(double /*h*/) {}
 };
 
-std::vector<std::string> integratorNames();
-/// Creates an integrator by name; throws std::invalid_argument listing the known names.
+/// Creates the integrator of s.method from its option groups.
 std::unique_ptr<Integrator> makeIntegrator(OdeSystem& sys, const IntegratorSettings& s);
 
 }  // namespace chaindrive

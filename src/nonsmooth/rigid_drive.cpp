@@ -266,12 +266,12 @@ bool RigidContactDrive::healthy(double t, const double* q, const double* v, Fail
       last_.data(), static_cast<int>(last_.size()), t, why);
 }
 
-RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const std::string& method,
+RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, ContactMethod method,
                                  const IntegratorSettings& s)
     : sys_(std::move(sys)), method_(method) {
   q_.assign(sys_->size(), 0.0);
   v_.assign(sys_->size(), 0.0);
-  if (method == "time-stepping") {
+  if (method == ContactMethod::TimeStepping) {
     ns::MoreauJeanSettings ms;
     ms.step = s.fixed.step;
     fixedStep_ = s.fixed.step;
@@ -280,7 +280,7 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
     ms.recordLcpCount = s.rigid.recordLcpCount;
     ms.frictionFacets = s.rigid.frictionFacets;
     ns_ = std::make_unique<ns::MoreauJean>(*sys_, ms);
-  } else if (method == "event-driven") {
+  } else if (method == ContactMethod::EventDriven) {
     ns::EventDrivenSettings es;
     es.rtol = s.adaptive.rtol;
     es.atolPosition = s.adaptive.rtol * 1e-3;
@@ -294,7 +294,8 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const s
     es.recordLcpCount = s.rigid.recordLcpCount;
     ns_ = std::make_unique<ns::EventDriven>(*sys_, es);
   } else {
-    throw std::invalid_argument("contact method '" + method + "' is unknown; allowed: compliant, event-driven, time-stepping");
+    throw std::invalid_argument("contact method 'compliant' is not a rigid-contact method; allowed: event-driven, "
+                                "time-stepping");
   }
 }
 

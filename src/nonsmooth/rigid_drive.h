@@ -70,11 +70,12 @@ class RigidContactDrive : public ns::NonsmoothSystem {
 /// Rigid-contact method (event-driven or time-stepping) behind the Integrator interface.
 class RigidIntegrator : public Integrator {
  public:
-  RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, const std::string& method, const IntegratorSettings& s);
+  /// method: time stepping or event driven.
+  RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, ContactMethod method, const IntegratorSettings& s);
   void reset(double t0, const double* y0) override;
   void advance(double tout, double* y) override;
   IntegratorStats stats() const override;
-  std::string name() const override { return method_; }
+  std::string name() const override { return choiceName(method_); }
   double fixedStep() const override { return fixedStep_; }
   const ns::NsStats& contactStats() const;
   /// Contact points with the forces of the last step (mean force over it for time stepping).
@@ -84,7 +85,7 @@ class RigidIntegrator : public Integrator {
 
  private:
   std::shared_ptr<RigidContactDrive> sys_;
-  std::string method_;
+  ContactMethod method_;
   std::unique_ptr<ns::NonsmoothMethod> ns_;
   double fixedStep_ = 0.0;  // time stepping: its step; event driven: 0 (adaptive)
   std::vector<double> q_, v_;

@@ -136,75 +136,97 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
 
 namespace {
 
+bool explicitMethod(IntegratorMethod m) {
+  return m == IntegratorMethod::FixedVerlet || m == IntegratorMethod::FixedVerletImplicitJointDamping ||
+         m == IntegratorMethod::ArkodeErk || m == IntegratorMethod::ArkodeErkFixed;
+}
+
+std::string quoted(const char* name) { return "'" + std::string(name) + "'"; }
+
+// The span fidelity has spans, no contacts, and takes its span stiffness from journal bearings;
+// its implicit part is not the links' joints and contacts.
+void spanProblems(const RunChoices& c, std::vector<ChoiceProblem>& problems) {
+  if (c.contacts != ContactMethod::Compliant)
+    problems.push_back({RunChoice::ContactMethod, quoted(choiceName(c.contacts)) + " does not apply to fidelity "
+                        "'span' (its chain has spans, not contacts); allowed with it: compliant"});
+  if (c.joints != JointModel::JournalBearing)
+    problems.push_back({RunChoice::JointModel, quoted(choiceName(c.joints)) + " does not apply to fidelity 'span' "
+                        "(its spans take their stiffness from journal bearings); allowed with it: journal-bearing"});
+  if (c.method == IntegratorMethod::FixedNewmark || c.method == IntegratorMethod::FixedVerletImplicitDamping ||
+      c.method == IntegratorMethod::FixedVerletImplicitJointDamping)
+    problems.push_back({RunChoice::Integrator, quoted(choiceName(c.method)) + " does not apply to fidelity 'span' "
+                        "(its implicit part is the links' joints and contacts); allowed with it: the other methods"});
+}
+
 // A CVT's pin-sheave contacts (dynamics/pin_sheave.h) have a force law and, for time stepping, the
 // friction as a constraint; no acceleration-level formulation (event driven), Jacobian or
 // damping rates yet, so the methods that need one are refused.
-void refuseOnPulleys(const std::string& fidelity, const std::string& contactMethod, const std::string& method) {
-  const std::vector<std::string> explicitMethods = {"fixed-verlet", "fixed-verlet-implicit-joint-damping", "arkode-erk",
-                                                    "arkode-erk-fixed"};
-  if (fidelity != "link")
-    throw std::invalid_argument("fidelity '" + fidelity + "': a CVT has the link fidelity only");
-  if (contactMethod == "time-stepping") return;
-  if (contactMethod != "compliant")
-    throw std::invalid_argument("contact method '" + contactMethod + "': a CVT's pins have a compliant normal "
-                                "(allowed: compliant, time-stepping)");
-  if (std::find(explicitMethods.begin(), explicitMethods.end(), method) == explicitMethods.end())
-    throw std::invalid_argument("integrator '" + method + "' needs the contacts' Jacobian or damping rates, which a "
-                                "CVT's pin-sheave contacts do not give; allowed on a CVT: fixed-verlet, "
-                                "fixed-verlet-implicit-joint-damping, arkode-erk, arkode-erk-fixed");
+void pulleyProblems(const RunChoices& c, std::vector<ChoiceProblem>& problems) {
+  if (c.fidelity != Fidelity::Link)
+    problems.push_back({RunChoice::Fidelity, "'span': a CVT has the link fidelity only"});
+  if (c.contacts == ContactMethod::EventDriven)
+    problems.push_back({RunChoice::ContactMethod, "'event-driven': a CVT's pins have a compliant normal (allowed: "
+                        "compliant, time-stepping)"});
+  if (c.contacts == ContactMethod::Compliant && !explicitMethod(c.method))
+    problems.push_back({RunChoice::Integrator, quoted(choiceName(c.method)) + " needs the contacts' Jacobian or "
+                        "damping rates, which a CVT's pin-sheave contacts do not give; allowed on a CVT: "
+                        "fixed-verlet, fixed-verlet-implicit-joint-damping, arkode-erk, arkode-erk-fixed"});
 }
 
 }  // namespace
 
+RunChoices runChoices(const Model& m, const SimulationOptions& opt) {
+  return {opt.fidelity, opt.contactMethod.value_or(m.description.contact.method),
+          opt.jointModel.value_or(m.description.chain.joint.model), opt.integrator.method,
+          opt.integrator.rigid.rigidPins};
+}
+
+std::vector<ChoiceProblem> combinationProblems(const Model& m, const RunChoices& c) {
+  std::vector<ChoiceProblem> problems;
+  if (c.fidelity == Fidelity::Span) spanProblems(c, problems);
+  if (!m.pulleys.empty()) pulleyProblems(c, problems);
+  if (c.fidelity == Fidelity::Link && c.contacts == ContactMethod::Compliant && c.joints == JointModel::Ideal)
+    problems.push_back({RunChoice::JointModel, "'ideal' needs a rigid-contact method (event-driven or "
+                        "time-stepping); with compliant contacts use journal-bearing joints"});
+  if (c.rigidPins && m.pulleys.empty())
+    problems.push_back({RunChoice::RigidPins, "are a chain CVT's option; this drive has no pulleys"});
+  return problems;
+}
+
 Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt,
                        std::unique_ptr<InputSignal> inputs)
     : model_(std::move(model)), options_(opt), inputs_(std::move(inputs)) {
-  const DriveDescription& desc = model_->description;
-  contactMethod_ = options_.contactMethod.empty() ? desc.contact.method : options_.contactMethod;
-  fidelity_ = options_.fidelity.empty() ? "link" : options_.fidelity;
-  const std::string joints = options_.jointModel.empty() ? desc.chain.joint.model : options_.jointModel;
-  if (joints != "journal-bearing" && joints != "ideal")
-    throw std::invalid_argument("joint model '" + joints + "' is unknown; allowed: journal-bearing, ideal");
-  if (!model_->pulleys.empty()) refuseOnPulleys(fidelity_, contactMethod_, options_.integrator.method);
-  if (fidelity_ == "link") buildLinkModel(joints);
-  else if (fidelity_ == "span") buildSpanModel(joints);
-  else throw std::invalid_argument("fidelity '" + fidelity_ + "' is unknown; allowed: link, span");
+  const RunChoices choices = runChoices(*model_, options_);
+  contactMethod_ = choices.contacts;
+  constexpr const char* kChoiceWords[] = {"fidelity", "contact method", "joint model", "integrator", "rigid pins"};
+  std::string refused;
+  for (const auto& p : combinationProblems(*model_, choices))
+    refused += (refused.empty() ? "" : "; ") + std::string(kChoiceWords[static_cast<int>(p.choice)]) + " " + p.text;
+  if (!refused.empty()) throw std::invalid_argument(refused);
+  if (options_.fidelity == Fidelity::Link) buildLinkModel(choices.joints);
+  else buildSpanModel();
   const double step = integrator_->fixedStep();
   grid_.unit = step > 0.0 ? step : kAdaptiveTimeQuantum;
 }
 
 // The link-by-link model with compliant or rigid contacts.
-void Simulation::buildLinkModel(const std::string& joints) {
-  if (contactMethod_ == "compliant") {
-    if (joints == "ideal")
-      throw std::invalid_argument("ideal joints need a rigid-contact method (event-driven or time-stepping); with "
-                                  "compliant contacts use journal-bearing joints");
+void Simulation::buildLinkModel(JointModel joints) {
+  if (contactMethod_ == ContactMethod::Compliant) {
     system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.health);
     integrator_ = makeIntegrator(*system_, options_.integrator);
-  } else if (contactMethod_ == "event-driven" || contactMethod_ == "time-stepping") {
-    if (options_.integrator.rigid.rigidPins && model_->pulleys.empty())
-      throw std::invalid_argument("rigid pins: a chain CVT's option; this drive has no pulleys");
-    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == "ideal", options_.health,
+  } else {
+    rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == JointModel::Ideal, options_.health,
                                                  options_.integrator.rigid.rigidPins);
     auto ri = std::make_unique<RigidIntegrator>(rigid_, contactMethod_, options_.integrator);
     rigidIntegrator_ = ri.get();
     integrator_ = std::move(ri);
     outData_ = std::make_unique<Data>(*model_);
-  } else {
-    throw std::invalid_argument("contact method '" + contactMethod_ +
-                                "' is unknown; allowed: compliant, event-driven, time-stepping");
   }
   y_.assign(model_->nStates, 0.0);
 }
 
 // The span model: no contacts (the chain is spans), its stiffness from the journal bearings.
-void Simulation::buildSpanModel(const std::string& joints) {
-  if (contactMethod_ != "compliant")
-    throw std::invalid_argument("contact method '" + contactMethod_ + "' does not apply to the span fidelity "
-                                "(its chain has spans, not contacts); use the link fidelity");
-  if (joints != "journal-bearing")
-    throw std::invalid_argument("joint model '" + joints + "' has no stiffness for the spans of the span fidelity; "
-                                "use journal-bearing joints");
+void Simulation::buildSpanModel() {
   spanModel_ = std::make_unique<span::SpanModel>(span::assembleSpanModel(*model_));
   spanSystem_ = std::make_unique<span::SpanSystem>(*spanModel_, *inputs_, options_.health);
   integrator_ = makeIntegrator(*spanSystem_, options_.integrator);

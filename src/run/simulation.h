@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,13 +22,13 @@
 namespace chaindrive {
 
 struct SimulationOptions {
-  std::string fidelity;               // "", "link", "span" ("": link): the link-by-link model or the span
-                                      // model (src/span/) of the same drive
+  Fidelity fidelity = Fidelity::Link;  // the link-by-link model or the span model (src/span/) of the
+                                       // same drive
   IntegratorSettings integrator;      // compliant contacts: the integrator by name; rigid contacts:
                                       // fixed.step and rigid (time stepping), adaptive.rtol and
                                       // maxStep, rigid and eventDriven (event driven)
-  std::string contactMethod;          // "", "compliant", "event-driven", "time-stepping" ("": the drive's)
-  std::string jointModel;             // "", "journal-bearing", "ideal" ("": the drive's)
+  std::optional<ContactMethod> contactMethod;  // none: the drive's
+  std::optional<JointModel> jointModel;        // none: the drive's
   PreloadOptions preload;
   HealthLimits health;              // blow-up and tunnelling detection
   int monitoredLink = -1;           // -1: the model's
@@ -78,6 +79,28 @@ class DriveSystem : public OdeSystem {
   Failure lastError_;
 };
 
+/// A run's choices, the drive's where the options leave them open.
+struct RunChoices {
+  Fidelity fidelity;
+  ContactMethod contacts;
+  JointModel joints;
+  IntegratorMethod method;
+  bool rigidPins;
+};
+RunChoices runChoices(const Model& m, const SimulationOptions& opt);
+
+/// The choice a combination rule refuses (the one to change), and why: its text starts with the
+/// refused value, so that each boundary puts its own name of the choice before it.
+enum class RunChoice { Fidelity, ContactMethod, JointModel, Integrator, RigidPins };
+struct ChoiceProblem {
+  RunChoice choice;
+  std::string text;
+};
+
+/// The rules that combine a run's choices on a drive, in one place (empty: the combination runs).
+/// Simulation refuses a run that breaks one; the FMUs report them by parameter name.
+std::vector<ChoiceProblem> combinationProblems(const Model& m, const RunChoices& choices);
+
 class Simulation {
  public:
   Simulation(std::shared_ptr<const Model> model, const SimulationOptions& opt, std::unique_ptr<InputSignal> inputs);
@@ -110,12 +133,11 @@ class Simulation {
   const PreloadReport& preloadReport() const { return preload_; }
   IntegratorStats integratorStats() const { return integrator_->stats(); }
   long long rhsEvaluations() const;
-  const std::string& integratorName() const { return options_.integrator.method; }
+  const char* integratorName() const { return choiceName(options_.integrator.method); }
   /// The step of a fixed-step method (compliant or time stepping); 0 for adaptive methods.
   double integratorFixedStep() const { return integrator_->fixedStep(); }
-  const std::string& contactMethod() const { return contactMethod_; }
-  /// "link" or "span".
-  const std::string& fidelity() const { return fidelity_; }
+  ContactMethod contactMethod() const { return contactMethod_; }
+  Fidelity fidelity() const { return options_.fidelity; }
   /// The span model (nullptr in link fidelity).
   const span::SpanModel* spanModel() const { return spanModel_.get(); }
   /// Counters of the rigid-contact methods (nullptr for compliant contacts).
@@ -130,8 +152,7 @@ class Simulation {
   std::shared_ptr<const Model> model_;
   SimulationOptions options_;
   std::unique_ptr<InputSignal> inputs_;
-  std::string contactMethod_;
-  std::string fidelity_;
+  ContactMethod contactMethod_;  // the options' or the drive's
   std::unique_ptr<DriveSystem> system_;              // compliant contacts
   std::shared_ptr<RigidContactDrive> rigid_;         // rigid contacts
   RigidIntegrator* rigidIntegrator_ = nullptr;       // owned by integrator_
@@ -147,8 +168,8 @@ class Simulation {
   PreloadReport preload_;
   Outputs out_;
 
-  void buildLinkModel(const std::string& joints);
-  void buildSpanModel(const std::string& joints);
+  void buildLinkModel(JointModel joints);
+  void buildSpanModel();
 };
 
 }  // namespace chaindrive

@@ -36,11 +36,11 @@ double fromHex(const std::string& path, const std::string& field, const json& j)
 
 }  // namespace
 
-void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s, const std::string& fidelity) {
+void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s, Fidelity fidelity) {
   json j;
   j["schema"] = kSchema;
   j["drive"] = m.name;
-  if (fidelity != "link") j["fidelity"] = fidelity;
+  if (fidelity != Fidelity::Link) j["fidelity"] = choiceName(fidelity);
   j["links"] = m.chain.links;
   j["states"] = s.y.size();
   j["time"] = hex(s.time);
@@ -54,7 +54,7 @@ void writeStateFile(const std::string& path, const Model& m, const StateSnapshot
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-StateSnapshot readStateFile(const std::string& path, const Model& m, int states, const std::string& fidelity) {
+StateSnapshot readStateFile(const std::string& path, const Model& m, int states, Fidelity fidelity) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot be opened");
   json j;
@@ -70,9 +70,9 @@ StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
   if (!j.is_object() || j.value("schema", "") != kSchema)
     throw std::runtime_error(path + ": not a state file (schema must be \"" + std::string(kSchema) + "\")");
   const std::string fileFidelity = j.value("fidelity", "link");
-  if (fileFidelity != fidelity)
-    throw std::runtime_error(path + ": a state of the " + fileFidelity + " fidelity; this run is of the " + fidelity +
-                             " fidelity");
+  if (choiceOf<Fidelity>(fileFidelity) != fidelity)
+    throw std::runtime_error(path + ": a state of the " + fileFidelity + " fidelity; this run is of the " +
+                             choiceName(fidelity) + " fidelity");
   const int fileLinks = j.value("links", -1), fileStates = j.value("states", -1);
   if (fileLinks != m.chain.links || fileStates != states)
     throw std::runtime_error(path + ": a state of another drive (" + std::to_string(fileLinks) + " links, " +

@@ -16,15 +16,15 @@ struct StateSnapshot {
 };
 
 /// Writes the snapshot as JSON (schema "chaindrive.state/2") with the drive's name, number of
-/// links and of states and the fidelity ("link" or "span"; written unless "link"), so that a
+/// links and of states and the fidelity (written unless link), so that a
 /// mismatching drive or fidelity is recognised on reading.
 void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s,
-                    const std::string& fidelity = "link");
+                    Fidelity fidelity = Fidelity::Link);
 
 /// Reads a snapshot of `states` values for drive m in `fidelity`. Throws std::runtime_error
 /// naming the file and the problem (unreadable, not a state file, another fidelity, another
 /// drive: links or state count differ, a non-finite or malformed value).
 StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
-                            const std::string& fidelity = "link");
+                            Fidelity fidelity = Fidelity::Link);
 
 }  // namespace chaindrive

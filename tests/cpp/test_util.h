@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,18 @@
 #include "statics/preload.h"
 
 namespace chaindrive::test {
+
+/// A choice by its name, as the boundary parses it (the tests read better with the names).
+template <class E>
+E named(const std::string& name) {
+  return parseChoice<E>(name, "test choice");
+}
+/// The same, an empty name for none (the drive's).
+template <class E>
+std::optional<E> namedOrDrive(const std::string& name) {
+  if (name.empty()) return std::nullopt;
+  return named<E>(name);
+}
 
 inline nlohmann::json defaultJson() { return nlohmann::json::parse(defaultDriveJson(), nullptr, true, true); }
 

@@ -9,7 +9,7 @@
 
 #include "fmi2Functions.h"
 #include "fuzz_rng.h"
-#include "variables.h"
+#include "chaindrive/chaindrive_variables.h"
 
 namespace chaindrive::fuzz {
 

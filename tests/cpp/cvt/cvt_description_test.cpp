@@ -35,7 +35,7 @@ TEST(CvtDescription, DefaultParsesInSi) {
   EXPECT_EQ(d.numberOfLinks, 63);  // the paper's example 4.1
   EXPECT_NEAR(d.wedgeHalfAngle, 11.0 * 3.14159265358979323846 / 180.0, 1e-15);
   EXPECT_GT(d.pinAxialStiffness, 0.0);
-  EXPECT_EQ(d.joint.model, "journal-bearing");
+  EXPECT_EQ(d.joint.model, JointModel::JournalBearing);
 }
 
 TEST(CvtDescription, ProblemsNameTheFieldAndTheRange) {

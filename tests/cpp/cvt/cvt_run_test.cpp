@@ -11,8 +11,10 @@
 #include "cvt/cvt_assembly.h"
 #include "dynamics/pin_sheave.h"
 #include "run/simulation.h"
+#include "test_util.h"
 
 using namespace chaindrive;
+using chaindrive::test::named;
 
 namespace {
 
@@ -73,7 +75,7 @@ TEST(CvtRun, MethodsWithoutPinSheaveJacobiansAreRefused) {
   const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
   for (const char* method : {"cvode-bdf-klu", "fixed-newmark", "fixed-verlet-implicit-damping"}) {
     SimulationOptions so;
-    so.integrator.method = method;
+    so.integrator.method = named<IntegratorMethod>(method);
     try {
       Simulation sim(model, so, std::make_unique<HeldInputs>(*model));
       FAIL() << method << " was accepted";
@@ -81,9 +83,9 @@ TEST(CvtRun, MethodsWithoutPinSheaveJacobiansAreRefused) {
       EXPECT_NE(std::string(e.what()).find("allowed on a CVT"), std::string::npos) << e.what();
     }
   }
-  for (const char* contactMethod : {"event-driven", "penalty"}) {
+  for (const char* contactMethod : {"event-driven"}) {
     SimulationOptions so;
-    so.contactMethod = contactMethod;
+    so.contactMethod = named<ContactMethod>(contactMethod);
     try {
       Simulation sim(model, so, std::make_unique<HeldInputs>(*model));
       FAIL() << contactMethod << " was accepted";
@@ -100,7 +102,7 @@ TEST(CvtRun, MethodsWithoutPinSheaveJacobiansAreRefused) {
 TEST(CvtRun, TimeSteppingKeepsThePinsFrictionInTheirCone) {
   const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
   CvtRunOptions opt;
-  opt.contactMethod = "time-stepping";
+  opt.contactMethod = named<ContactMethod>("time-stepping");
   opt.integrator.fixed.step = 5e-6;
   opt.integrator.rigid.frictionFacets = 4;
   opt.loadTorque = 100.0;
@@ -132,7 +134,7 @@ TEST(CvtRun, TimeSteppingKeepsThePinsFrictionInTheirCone) {
 TEST(CvtRun, RigidPinsCloseWithImpactsAndTheWedgesFriction) {
   const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
   CvtRunOptions opt;
-  opt.contactMethod = "time-stepping";
+  opt.contactMethod = named<ContactMethod>("time-stepping");
   opt.integrator.rigid.rigidPins = true;
   opt.integrator.fixed.step = 5e-6;
   opt.loadTorque = 100.0;
@@ -162,7 +164,7 @@ TEST(CvtRun, RigidPinsCloseWithImpactsAndTheWedgesFriction) {
 TEST(CvtRun, RatioInputShiftsTheChain) {
   const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
   SimulationOptions so;
-  so.integrator.method = "fixed-verlet";
+  so.integrator.method = named<IntegratorMethod>("fixed-verlet");
   so.integrator.fixed.step = 1e-6;
   auto inputs = std::make_unique<HeldInputs>(*model);
   HeldInputs& held = *inputs;
@@ -189,7 +191,7 @@ TEST(CvtRun, FixedStepCommunicationStepAllocatesNothing) {
   const auto model = std::make_shared<const Model>(assembleCvt(defaultCvtDescription()));
   for (const char* method : {"fixed-verlet", "fixed-verlet-implicit-joint-damping"}) {
     SimulationOptions so;
-    so.integrator.method = method;
+    so.integrator.method = named<IntegratorMethod>(method);
     so.integrator.fixed.step = 1e-6;
     auto inputs = std::make_unique<HeldInputs>(*model);
     HeldInputs& held = *inputs;

@@ -45,7 +45,7 @@ TEST(Fields, ProblemsNameTheFieldPathAndTheAllowedRange) {
       "top.x: -1 is out of range; allowed (0, 10] m",
       "top.n: must be an integer, got 2.5",
       "top.a: given both as 'a' [rad] and 'a_deg' [deg]; give one",
-      "top.s: 'maybe' is not allowed; allowed: 'yes', 'no'",
+      "top.s: 'maybe' is unknown; allowed: yes, no",
       "top.list[0]: must be a string",
       "top.required: missing; required, [0, 1] kg",
       "top.sub.k: unknown key; known keys here: ",

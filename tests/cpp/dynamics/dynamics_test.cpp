@@ -63,7 +63,7 @@ TEST(Energy, ConservedAndDriftShrinksWithTheStep) {
   auto m = std::make_shared<const Model>(assemble(conservativeDrive()));
   const double tEnd = 2.0 * 2.0 * kPi / 200.0 * 1.5;  // three crank revolutions at 200 rad/s
   IntegratorSettings coarse, fine;
-  coarse.method = fine.method = "fixed-verlet";
+  coarse.method = fine.method = named<IntegratorMethod>("fixed-verlet");
   coarse.fixed.step = 2e-6;
   fine.fixed.step = 1e-6;
   double ek = 0.0;
@@ -80,7 +80,7 @@ TEST(Energy, AdaptiveDriftShrinksWithTolerance) {
   auto m = std::make_shared<const Model>(assemble(conservativeDrive()));
   const double tEnd = 0.01;
   IntegratorSettings loose, tight;
-  loose.method = tight.method = "arkode-erk";
+  loose.method = tight.method = named<IntegratorMethod>("arkode-erk");
   loose.adaptive.rtol = 1e-5;
   tight.adaptive.rtol = 1e-7;
   double ek = 0.0;
@@ -104,7 +104,7 @@ TEST(Balance, TightMinusSlackEqualsCamTorquesOverPitchRadius) {
   in->setLoad(m->rotorIndex("camshaftIntake"), tauI);
   in->setLoad(m->rotorIndex("camshaftExhaust"), tauE);
   SimulationOptions opt;
-  opt.integrator.method = "fixed-verlet";
+  opt.integrator.method = named<IntegratorMethod>("fixed-verlet");
   opt.integrator.fixed.step = 2.5e-6;
   Simulation sim(m, opt, std::move(in));
   sim.start(0.0);
@@ -138,7 +138,7 @@ TEST(Polygon, CamshaftSpeedRipplesAtTheMeshingFrequency) {
   const double fMesh = 21.0 * rpm / 60.0;  // 420 Hz
   auto in = std::make_unique<HarmonicInputs>(*m, w);
   SimulationOptions opt;
-  opt.integrator.method = "fixed-verlet";
+  opt.integrator.method = named<IntegratorMethod>("fixed-verlet");
   opt.integrator.fixed.step = 8e-7;
   Simulation sim(m, opt, std::move(in));
   sim.start(0.0);

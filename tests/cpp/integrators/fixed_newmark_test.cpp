@@ -49,7 +49,7 @@ class Oscillator : public OdeSystem {
 
 std::vector<double> integrate(Oscillator& sys, double gamma, double h, double tEnd) {
   IntegratorSettings s;
-  s.method = "fixed-newmark";
+  s.method = named<IntegratorMethod>("fixed-newmark");
   s.fixed.step = h;
   s.newmark.gamma = gamma;
   auto integrator = makeIntegrator(sys, s);
@@ -103,7 +103,7 @@ namespace {
 
 std::vector<double> driveRun(double step, double gamma, double tEnd) {
   IntegratorSettings s;
-  s.method = "fixed-newmark";
+  s.method = named<IntegratorMethod>("fixed-newmark");
   s.fixed.step = step;
   s.newmark.gamma = gamma;
   return chaindrive::test::tensionerRun(defaultModel(), s, tEnd);

@@ -25,7 +25,7 @@ namespace {
 std::vector<double> tensionerRun(const std::shared_ptr<const Model>& m, const std::string& method, double step,
                                  double tEnd) {
   IntegratorSettings s;
-  s.method = method;
+  s.method = named<IntegratorMethod>(method);
   s.fixed.step = step;
   return chaindrive::test::tensionerRun(m, s, tEnd);
 }
@@ -60,7 +60,7 @@ std::vector<double> stateAfter(const std::string& method, double step, int lanes
   sys.data().vectorLanes = lanes;
   std::vector<double> y = runningState(*m, *in);
   IntegratorSettings s;
-  s.method = method;
+  s.method = named<IntegratorMethod>(method);
   s.fixed.step = step;
   auto integrator = makeIntegrator(sys, s);
   integrator->reset(0.0, y.data());
@@ -146,12 +146,12 @@ TEST(FixedVerlet, ImplicitJointDampingRefusedWithoutConstantJointDamping) {
   }
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.fidelity = "span";
-  opt.integrator.method = "fixed-verlet-implicit-joint-damping";
+  opt.fidelity = named<Fidelity>("span");
+  opt.integrator.method = named<IntegratorMethod>("fixed-verlet-implicit-joint-damping");
   try {
     Simulation sim(m, opt, constantLoads(*m, 3000.0));
     FAIL() << "expected a refusal in the span fidelity";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("link fidelity"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("does not apply to fidelity 'span'"), std::string::npos) << e.what();
   }
 }

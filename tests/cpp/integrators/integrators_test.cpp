@@ -18,7 +18,7 @@ std::vector<double> series(const std::string& method, double rtolOrStep, double 
                            double (*get)(const Outputs&)) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.integrator.method = method;
+  opt.integrator.method = named<IntegratorMethod>(method);
   if (method.rfind("fixed", 0) == 0 || method == "arkode-erk-fixed") opt.integrator.fixed.step = rtolOrStep;
   else opt.integrator.adaptive.rtol = rtolOrStep;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
@@ -42,15 +42,34 @@ std::vector<double> tensionerSeries(const std::string& method, double rtolOrStep
 }  // namespace
 
 TEST(Integrators, UnknownNameListsTheKnownOnes) {
-  auto m = defaultModel();
-  SimulationOptions opt;
-  opt.integrator.method = "rk45";
   try {
-    Simulation sim(m, opt, constantLoads(*m, 1000.0));
+    parseChoice<IntegratorMethod>("rk45", "solver.method");
     FAIL() << "expected an error";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("fixed-verlet"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()),
+              "solver.method: 'rk45' is unknown; allowed: cvode-bdf-klu, cvode-bdf-band, arkode-erk, arkode-erk-fixed, "
+              "fixed-verlet, fixed-verlet-implicit-damping, fixed-verlet-implicit-joint-damping, fixed-newmark");
   }
+}
+
+// Every choice's table: names and values one to one, so that parsing a name gives the value back.
+template <class E>
+void expectRoundTrip() {
+  for (const auto& c : ChoiceNames<E>::table) {
+    EXPECT_EQ(choiceOf<E>(c.name), c.value) << c.name;
+    EXPECT_STREQ(choiceName(c.value), c.name);
+  }
+  EXPECT_FALSE(choiceOf<E>("").has_value());
+}
+
+TEST(Choices, NamesAndValuesAreOneToOne) {
+  expectRoundTrip<IntegratorMethod>();
+  expectRoundTrip<ContactMethod>();
+  expectRoundTrip<JointModel>();
+  expectRoundTrip<ContactLawModel>();
+  expectRoundTrip<Fidelity>();
+  EXPECT_EQ(choiceOf<ContactMethod>("lcp"), std::nullopt);
+  EXPECT_EQ(unknownChoiceText("beam", choiceNames<Fidelity>()), "'beam' is unknown; allowed: link, span");
 }
 
 // An explicit step far beyond the stability limit (about 3.5 us for this drive) blows up; the
@@ -58,7 +77,7 @@ TEST(Integrators, UnknownNameListsTheKnownOnes) {
 TEST(Integrators, BlowUpIsDetectedAndReported) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.integrator.method = "fixed-verlet";
+  opt.integrator.method = named<IntegratorMethod>("fixed-verlet");
   opt.integrator.fixed.step = 8e-6;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
@@ -81,7 +100,7 @@ TEST(Integrators, BlowUpIsDetectedAndReported) {
 TEST(Integrators, SolverFailureCarriesTheFlagAndTime) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.integrator.method = "cvode-bdf-klu";
+  opt.integrator.method = named<IntegratorMethod>("cvode-bdf-klu");
   opt.integrator.adaptive.rtol = 1e-6;
   opt.integrator.adaptive.maxStepsPerOutput = 20;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
@@ -158,8 +177,8 @@ TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
        {std::pair<const char*, const char*>{"link", "fixed-verlet"}, {"span", "fixed-verlet"}, {"link", "fixed-newmark"},
         {"link", "fixed-verlet-implicit-joint-damping"}, {"link", "fixed-verlet-implicit-damping"}}) {
     SimulationOptions opt;
-    opt.fidelity = fidelity;
-    opt.integrator.method = method;
+    opt.fidelity = named<Fidelity>(fidelity);
+    opt.integrator.method = named<IntegratorMethod>(method);
     opt.integrator.fixed.step = 2.5e-6;
     Simulation sim(m, opt, constantLoads(*m, 3000.0));
     sim.start(0.0);

@@ -81,7 +81,7 @@ namespace {
 std::vector<double> stateAfter(const std::string& method, double step, TimeForm form, double H) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.integrator.method = method;
+  opt.integrator.method = named<IntegratorMethod>(method);
   opt.integrator.fixed.step = step;
   auto in = std::make_unique<HarmonicInputs>(*m, 3000.0 * 2.0 * kPi / 60.0);
   in->addOrder({2.0, 0.01, 0.0});
@@ -113,7 +113,7 @@ TEST(TimeGrid, FixedStepStatesDoNotDependOnTheOutputTimes) {
 TEST(TimeGrid, SimulationCarriesTheRemainderOfOffGridRequests) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.integrator.method = "fixed-verlet";
+  opt.integrator.method = named<IntegratorMethod>("fixed-verlet");
   opt.integrator.fixed.step = 2.5e-6;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.25);
@@ -132,7 +132,7 @@ TEST(TimeGrid, SimulationCarriesTheRemainderOfOffGridRequests) {
 TEST(TimeGrid, AdaptiveMethodsStopOnTheQuantum) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.integrator.method = "arkode-erk";
+  opt.integrator.method = named<IntegratorMethod>("arkode-erk");
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
   sim.start(0.0);
   EXPECT_EQ(sim.grid().unit, kAdaptiveTimeQuantum);

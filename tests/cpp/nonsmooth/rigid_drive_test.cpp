@@ -16,8 +16,8 @@ std::vector<double> run(const std::string& method, const std::string& joints, do
                         Simulation** keep = nullptr) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.contactMethod = method;
-  opt.jointModel = joints;
+  opt.contactMethod = named<ContactMethod>(method);
+  opt.jointModel = namedOrDrive<JointModel>(joints);
   opt.integrator.fixed.step = step;
   auto sim = std::make_unique<Simulation>(m, opt, constantLoads(*m, 3000.0));
   sim->start(0.0);
@@ -67,7 +67,7 @@ TEST(RigidDrive, TimeSteppingRunsDeterministically) {
 TEST(RigidDrive, EventDrivenReportsTheEventStorm) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.contactMethod = "event-driven";
+  opt.contactMethod = named<ContactMethod>("event-driven");
   opt.integrator.adaptive.rtol = 1e-4;
   opt.integrator.eventDriven.maxEventsPerSecond = 1e5;
   Simulation sim(m, opt, constantLoads(*m, 3000.0));
@@ -96,10 +96,7 @@ TEST(RigidDrive, IdealJointsHold) {
 TEST(RigidDrive, CompliantContactsWithIdealJointsIsAnError) {
   auto m = defaultModel();
   SimulationOptions opt;
-  opt.contactMethod = "compliant";
-  opt.jointModel = "ideal";
-  EXPECT_THROW(Simulation(m, opt, constantLoads(*m, 3000.0)), std::invalid_argument);
-  opt.contactMethod = "lcp";
-  opt.jointModel = "";
+  opt.contactMethod = named<ContactMethod>("compliant");
+  opt.jointModel = namedOrDrive<JointModel>("ideal");
   EXPECT_THROW(Simulation(m, opt, constantLoads(*m, 3000.0)), std::invalid_argument);
 }

@@ -17,11 +17,13 @@ namespace {
 
 using test::constantLoads;
 using test::defaultModel;
+using test::named;
+using test::namedOrDrive;
 
 SimulationOptions spanOptions(const std::string& integrator = "fixed-verlet", double step = 2e-5) {
   SimulationOptions opt;
-  opt.fidelity = "span";
-  opt.integrator.method = integrator;
+  opt.fidelity = named<Fidelity>("span");
+  opt.integrator.method = named<IntegratorMethod>(integrator);
   opt.integrator.fixed.step = step;
   opt.integrator.adaptive.rtol = 1e-8;
   return opt;
@@ -130,7 +132,7 @@ TEST(SpanDynamics, SpanEigenfrequencyIsTheSpringMassValue) {
 TEST(SpanDynamics, StaticsAtRestMatchTheLinkModel) {
   const auto m = defaultModel();
   SimulationOptions linkOpt;
-  linkOpt.integrator.method = "fixed-verlet";
+  linkOpt.integrator.method = named<IntegratorMethod>("fixed-verlet");
   Simulation link(m, linkOpt, constantLoads(*m, 0.0, 0.0, 0.0));
   Simulation span(m, spanOptions(), constantLoads(*m, 0.0, 0.0, 0.0));
   link.start(0.0);
@@ -156,11 +158,9 @@ TEST(SpanDynamics, OptionsItCannotRunAreErrors) {
     }
     return std::string();
   };
-  EXPECT_NE(message([](SimulationOptions& o) { o.fidelity = "beam"; }).find("fidelity 'beam' is unknown; allowed: link, span"),
+  EXPECT_NE(message([](SimulationOptions& o) { o.contactMethod = named<ContactMethod>("time-stepping"); }).find("fidelity 'span'"),
             std::string::npos);
-  EXPECT_NE(message([](SimulationOptions& o) { o.contactMethod = "time-stepping"; }).find("span fidelity"),
-            std::string::npos);
-  EXPECT_NE(message([](SimulationOptions& o) { o.jointModel = "ideal"; }).find("journal-bearing"), std::string::npos);
+  EXPECT_NE(message([](SimulationOptions& o) { o.jointModel = namedOrDrive<JointModel>("ideal"); }).find("journal-bearing"), std::string::npos);
 }
 
 // A run restored from a saved state at grid point k1 repeats its outputs bit for bit.

@@ -50,13 +50,13 @@ def test_binary_exports_only_fmi2_and_links_only_libc_libm(binary):
 
 @pytest.mark.parametrize("description, header", [("modelDescription.xml", "chaindrive"), ("CVTChain.xml", "cvt")])
 def test_model_description_and_glue_agree(description, header):
-    """The model description is the single source; the adapter's variables.h mirrors it (both FMUs)."""
+    """The model description is the single source; the adapter's <adapter>_variables.h mirrors it (both FMUs)."""
     root = ET.parse(paths.ROOT / "modelDescription" / description).getroot()
     xml = {}
     for sv in root.iter("ScalarVariable"):
         typ = [c for c in sv if c.tag in ("Real", "Integer", "Boolean", "String")][0]
         xml[sv.get("name")] = (int(sv.get("valueReference")), typ.tag, sv.get("causality"), typ.get("start", ""))
-    header = (paths.ROOT / "fmu" / header / "variables.h").read_text()
+    header = (paths.ROOT / "fmu" / header / f"{header}_variables.h").read_text()
     vrs = dict(re.findall(r"\b(k\w+) = (\d+),", header))
     glue = {}
     for name, vr, typ, caus, start in re.findall(
