@@ -1,4 +1,4 @@
-// A choice (integrator method, contact method, joint model, contact law, fidelity) is an enum
+// A choice (integrator method, contact method, joint model, contact law, fidelity, rotation) is an enum
 // below the boundary. Its names are one table, ChoiceNames<E>::table, declared beside the enum.
 // The boundary (the description reader, the command-line tools, the FMUs) turns a name into the
 // enum once, with choiceOf or parseChoice, and reports an unknown name in one format

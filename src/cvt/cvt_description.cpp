@@ -16,8 +16,7 @@ void readHeader(Fields& top, CvtDescription& d) {
   top.string("schema", {"chaindrive.cvt/1"}, std::nullopt);
   d.name = top.string("name", {}, std::string("unnamed CVT"));
   top.string("description", {}, std::string(""));
-  const std::string rot = top.string("rotation", {"clockwise", "counterclockwise"}, std::string("counterclockwise"));
-  d.rotationSense = rot == "clockwise" ? -1.0 : 1.0;
+  d.rotationSense = rotationSense(top.choice<Rotation>("rotation", Rotation::Counterclockwise));
   d.gravity = top.vec2("gravity", 100.0, Vec2{0.0, -9.81}, "m/s^2");
 }
 

@@ -36,6 +36,16 @@ struct ChoiceNames<ContactLawModel> {
                                                           {ContactLawModel::SpringDamper, "spring-damper"}};
 };
 
+/// The running direction of a drive or a CVT, seen from the front: its sign (+1 counterclockwise,
+/// -1 clockwise) turns every rotor.
+enum class Rotation { Clockwise, Counterclockwise };
+template <>
+struct ChoiceNames<Rotation> {
+  static constexpr ChoiceName<Rotation> table[] = {{Rotation::Clockwise, "clockwise"},
+                                                   {Rotation::Counterclockwise, "counterclockwise"}};
+};
+inline double rotationSense(Rotation r) { return r == Rotation::Clockwise ? -1.0 : 1.0; }
+
 /// The model of the drive: link by link, or rotors and spans (src/span/).
 enum class Fidelity { Link, Span };
 template <>

@@ -33,8 +33,7 @@ void readHeader(Fields& top, DriveDescription& desc) {
   top.string("schema", {"chaindrive.drive/1"}, std::string("chaindrive.drive/1"));
   desc.name = top.string("name", {}, std::string("unnamed drive"));
   top.string("description", {}, std::string(""));
-  const std::string rot = top.string("rotation", {"clockwise", "counterclockwise"}, std::string("clockwise"));
-  desc.rotationSense = rot == "clockwise" ? -1.0 : 1.0;
+  desc.rotationSense = rotationSense(top.choice<Rotation>("rotation", Rotation::Clockwise));
   desc.gravity = top.vec2("gravity", 100.0, Vec2{0.0, -9.81}, "m/s^2");
 }
 

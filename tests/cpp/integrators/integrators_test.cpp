@@ -68,6 +68,7 @@ TEST(Choices, NamesAndValuesAreOneToOne) {
   expectRoundTrip<JointModel>();
   expectRoundTrip<ContactLawModel>();
   expectRoundTrip<Fidelity>();
+  expectRoundTrip<Rotation>();
   EXPECT_EQ(choiceOf<ContactMethod>("lcp"), std::nullopt);
   EXPECT_EQ(unknownChoiceText("beam", choiceNames<Fidelity>()), "'beam' is unknown; allowed: link, span");
 }
