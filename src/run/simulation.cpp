@@ -1,6 +1,7 @@
 #include "run/simulation.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include <cmath>
 
@@ -136,9 +137,14 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
 
 namespace {
 
-bool explicitMethod(IntegratorMethod m) {
-  return m == IntegratorMethod::FixedVerlet || m == IntegratorMethod::FixedVerletImplicitJointDamping ||
-         m == IntegratorMethod::ArkodeErk || m == IntegratorMethod::ArkodeErkFixed;
+bool runsOnPulleys(IntegratorMethod m) {
+  return std::find(std::begin(kPulleyIntegrators), std::end(kPulleyIntegrators), m) != std::end(kPulleyIntegrators);
+}
+
+std::string pulleyIntegratorNames() {
+  std::vector<std::string> names;
+  for (IntegratorMethod m : kPulleyIntegrators) names.emplace_back(choiceName(m));
+  return listOfNames(names);
 }
 
 std::string quoted(const char* name) { return "'" + std::string(name) + "'"; }
@@ -167,10 +173,10 @@ void pulleyProblems(const RunChoices& c, std::vector<ChoiceProblem>& problems) {
   if (c.contacts == ContactMethod::EventDriven)
     problems.push_back({RunChoice::ContactMethod, "'event-driven': a CVT's pins have a compliant normal (allowed: "
                         "compliant, time-stepping)"});
-  if (c.contacts == ContactMethod::Compliant && !explicitMethod(c.method))
+  if (c.contacts == ContactMethod::Compliant && !runsOnPulleys(c.method))
     problems.push_back({RunChoice::Integrator, quoted(choiceName(c.method)) + " needs the contacts' Jacobian or "
-                        "damping rates, which a CVT's pin-sheave contacts do not give; allowed on a CVT: "
-                        "fixed-verlet, fixed-verlet-implicit-joint-damping, arkode-erk, arkode-erk-fixed"});
+                        "damping rates, which a CVT's pin-sheave contacts do not give; allowed on a CVT: " +
+                        pulleyIntegratorNames()});
 }
 
 }  // namespace

@@ -79,6 +79,12 @@ class DriveSystem : public OdeSystem {
   Failure lastError_;
 };
 
+/// The integrators a drive with pulleys (a CVT) runs with: its pin-sheave contacts give no
+/// Jacobian and no damping rates, which the others need.
+constexpr IntegratorMethod kPulleyIntegrators[] = {
+    IntegratorMethod::FixedVerlet, IntegratorMethod::FixedVerletImplicitJointDamping, IntegratorMethod::ArkodeErk,
+    IntegratorMethod::ArkodeErkFixed};
+
 /// A run's choices, the drive's where the options leave them open.
 struct RunChoices {
   Fidelity fidelity;
