@@ -17,7 +17,7 @@ Two fidelities (--fidelity, the FMU parameter `fidelity`): link (default), the l
 and span, the span model (rotors and longitudinal spans, src/span/, about 80 times cheaper inside
 fmi2DoStep, not as accurate: python -m harness fidelity compares them). Both give the same
 outputs, so the same cycle statistics, plots and summary; the fidelity is named in the header line
-and the plot titles. The solver step defaults to each fidelity's own (SOLVER_STEP).
+and the plot titles. The solver defaults to each fidelity's own (harness/defaults.py).
 
 Two couplings:
   closed (default)  the way an engine simulator couples: a master loop (fmpy FMU2Slave) looks the
@@ -43,7 +43,7 @@ import time
 
 import numpy as np
 
-from . import cycle_stats, paths
+from . import checks, cycle_stats, defaults, paths
 from .drive.description import drive_json, meshing_order
 from .fmu import fmu
 from .plots import drive_picture, plots
@@ -57,16 +57,14 @@ DEFAULT_CYCLES = 120       # counted engine cycles of the default run (see READM
 # 0.2 % below the nominal speed (at 1000 rpm): 120 cycles then take a quarter of a cycle longer
 SPEED_MARGIN = 0.005
 FIDELITIES = ("link", "span")  # values of the FMU parameter `fidelity`: the reference, then the cheaper
-# [s] default FMU parameter solver.step per fidelity (fixed-verlet): the link model is stable below
-# about 3.5 us; the span model (no link masses: rotors on span springs) runs at 100 us and blows up
-# at 200 us on the default drive, so 20 us keeps a factor 5 and divides the communication step
-SOLVER_STEP = {"link": 2.5e-6, "span": 2e-5}
+# (the solver's defaults per fidelity: method, step, tolerance are the one table of every entry
+# point, harness/defaults.py)
 # the real-time method of the link fidelity: Verlet with the joints' damping implicit, 28 steps per
 # 0.1 ms communication step (about three quarters of its stable step; docs/benchmark_realtime.md)
 REALTIME_METHOD, REALTIME_STEP = "fixed-verlet-implicit-joint-damping", 1e-4 / 28
 COUPLINGS = ("closed", "open")  # this module's master loop (the default), fmpy.simulate_fmu
 COMMUNICATION_STEP = 1e-4  # [s] the default communication step
-DEFAULT_METHOD, DEFAULT_RTOL, NEWMARK_GAMMA = "fixed-verlet", 1e-5, 0.5  # the FMU parameters' defaults
+NEWMARK_GAMMA = 0.5  # the FMU parameter solver.newmarkGamma's default
 
 
 @dataclasses.dataclass(frozen=True)
@@ -75,26 +73,29 @@ class RunConfig:
     config_of from the command line) and read, never changed, by every step of the run."""
     run_in: int                          # engine cycles discarded before the counted ones
     solver_step: float                   # [s] FMU parameter solver.step
+    method: str                          # FMU parameter solver.method
+    rtol: float                          # FMU parameter solver.tolerance
     rpm: float = DEFAULT_RPM             # [rpm] mean engine speed
     fidelity: str = FIDELITIES[0]        # FMU parameter fidelity
     cycles: int = DEFAULT_CYCLES         # engine cycles counted after the run-in
     coupling: str = COUPLINGS[0]         # closed (the master loop run_closed) or open (run_open)
     step: float = COMMUNICATION_STEP     # [s] communication step
-    method: str = DEFAULT_METHOD         # FMU parameter solver.method
-    rtol: float = DEFAULT_RTOL           # FMU parameter solver.tolerance
     newmark_gamma: float = NEWMARK_GAMMA  # FMU parameter solver.newmarkGamma (fixed-newmark)
     drive: str | None = None             # drive description file; None: the FMU's default drive
     tables: str | None = None            # directory of the torque/speed tables; None: harness/tables/data
     out: pathlib.Path = paths.RESULTS    # output directory
+    strict: bool = False                 # a missed check (harness/checks.py) makes the exit status 1
 
 
 def run_config(**options):
     """A RunConfig from options named as its fields (None or left out: the default), with the
     defaults that depend on other options: the run-in from the speed (run_in_cycles), the solver
-    step from the fidelity (SOLVER_STEP)."""
+    from the fidelity (harness/defaults.py)."""
     given = {name: value for name, value in options.items() if value is not None}
     rpm, fidelity = given.get("rpm", DEFAULT_RPM), given.get("fidelity", FIDELITIES[0])
-    return RunConfig(**{"run_in": run_in_cycles(rpm), "solver_step": SOLVER_STEP[fidelity], **given})
+    solver = defaults.solver("timing", fidelity)
+    return RunConfig(**{"run_in": run_in_cycles(rpm), "solver_step": solver.step, "method": solver.method,
+                        "rtol": solver.tolerance, **given})
 
 
 class Progress:
@@ -328,6 +329,15 @@ def cycle_statistics(config, scene_run):
     return per_cycle, cycle_stats.summarize(per_cycle)
 
 
+def run_checks(config, scene_run, per_cycle_spans):
+    """The run's checks over its counted cycles (harness/checks.py): (checks for run.json, warning
+    lines, note lines)."""
+    first, last = per_cycle_spans[0][0], per_cycle_spans[-1][1] - 1
+    error = checks.energy_balance_error(scene_run.record, first, last)
+    found = {"energyBalanceError": error, "energyBalanceLimit": checks.ENERGY_BALANCE_LIMIT}
+    return found, checks.energy_warnings(error), checks.fidelity_notes(config.fidelity, config.drive)
+
+
 def write_summary(out, summary, cost):
     """summary.json (the cycle statistics) and run.json (what ran, its cost) in out."""
     out.mkdir(parents=True, exist_ok=True)
@@ -363,10 +373,16 @@ def run(config):
     csv = out / "outputs.csv"
     write_csv(csv, scene_run.record)
     per_cycle, summary = cycle_statistics(config, scene_run)
-    write_summary(out, summary, scene_run.cost(config))
     d = scene_run.record
-    t0 = d["time"][cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[0][0]]
+    spans = cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[:config.cycles]
+    found, warnings, notes = run_checks(config, scene_run, spans)
+    write_summary(out, summary, dict(scene_run.cost(config), checks=found, warnings=warnings, notes=notes))
+    t0 = d["time"][spans[0][0]]
     pictures = write_plots(out, d, config, t0, per_cycle, summary)
     report(summary, scene_run)
+    print(f"  checks: energy balance {100 * found['energyBalanceError']:+.2f} % of the dissipated energy (limit "
+          f"{100 * checks.ENERGY_BALANCE_LIMIT:g} %)")
+    checks.print_lines(warnings, notes)
     print(f"  outputs: {csv}, {out / 'summary.json'}, {out / 'run.json'}")
     print("  plots: " + ", ".join(str(p) for p in pictures))
+    return checks.EXIT_STRICT if config.strict and warnings else 0

@@ -4,11 +4,11 @@
                     tables (harness/job.py)
   cvt               the chain CVT, paper example 4.1, through the solver alone (harness/cvt/job.py)
 
-The options --rpm, --method, --solver-step, --rtol and --out are both scenes'; their defaults are
+The options --rpm, --method, --solver-step, --rtol, --out and --strict are both scenes'; their defaults are
 the scene's own. The other options are one scene's; the timing drive's are refused by the CVT
 scene when set.
 """
-from . import job, paths
+from . import defaults, job, paths
 from .cvt import job as cvt_job
 
 JOBS = {"timing": job, "cvt": cvt_job}  # --scene: its job's module
@@ -24,11 +24,15 @@ def add_arguments(ap):
                     "(paper example 4.1, harness/cvt/job.py)")
     ap.add_argument("--rpm", type=float, help=f"mean engine speed [rpm], 1000-6000 (tables; default "
                     f"{job.DEFAULT_RPM:g}); cvt: the driving-pulley speed (default {cvt_job.DEFAULT_RPM:g})")
-    ap.add_argument("--method", help="FMU parameter solver.method")
-    ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: "
-                    + ", ".join(f"{f} {h:g}" for f, h in job.SOLVER_STEP.items()) + ")")
-    ap.add_argument("--rtol", type=float, help="FMU parameter solver.tolerance")
+    ap.add_argument("--method", help="FMU parameter solver.method (default: the scene's and fidelity's, as "
+                    "--solver-step)")
+    ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default per scene and fidelity, "
+                    f"the same in every entry point: timing {defaults.described('timing')}; cvt "
+                    f"{defaults.described('cvt')})")
+    ap.add_argument("--rtol", type=float, help="FMU parameter solver.tolerance (default: the scene's and fidelity's)")
     ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
+    ap.add_argument("--strict", action="store_true", help="exit status 1 when one of the run's checks (energy and "
+                    "torque balances) misses its limit (always: a warning line and the run's JSON)")
     job.add_arguments(ap.add_argument_group("the timing drive (--scene timing)"))
     cvt_job.add_arguments(ap.add_argument_group("the chain CVT (--scene cvt)"))
 

@@ -98,8 +98,9 @@ void ChainDriveModel::parseChoices(std::vector<std::string>& problems) {
 void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
   if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
     problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
-  if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
-    problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed [1e-9, 1e-3] s");
+  if (!(params_.step == 0.0 || (params_.step >= 1e-9 && params_.step <= 1e-3)))
+    problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed 0 (the fidelity's "
+                       "default) or [1e-9, 1e-3] s");
   if (!(params_.newmarkGamma >= 0.5 && params_.newmarkGamma <= 1.0))
     problems.push_back("solver.newmarkGamma: " + std::to_string(params_.newmarkGamma) + " is out of range; allowed [0.5, 1]");
   auto checkOverride = [&](double v, const char* name, double hi) {
@@ -157,7 +158,9 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
   opt.fidelity = choices_.fidelity;
   opt.integrator.method = choices_.method;
   opt.integrator.adaptive.rtol = params_.tolerance;
-  opt.integrator.fixed.step = params_.step;
+  // solver.step 0: the fidelity's own step (run/defaults.h), as the command-line tools and the harness take it
+  opt.integrator.fixed.step =
+      params_.step > 0.0 ? params_.step : solverDefaults(Scene::TimingDrive, choices_.fidelity).step;
   opt.integrator.newmark.gamma = params_.newmarkGamma;
   opt.integrator.adaptive.stopAtOutputs = true;
   opt.contactMethod = choices_.contacts;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "run/defaults.h"
 #include "simulation_adapter.h"
 #include "chaindrive_variables.h"
 
@@ -56,12 +57,13 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   struct Parameters {
     std::string driveFile;
     int linkIndex = -1;
-    std::string method = "fixed-verlet";
+    // the defaults of the link fidelity (run/defaults.h); the step is the fidelity's own when 0
+    std::string method = choiceName(solverDefaults(Scene::TimingDrive).method);
     std::string contactMethod;  // "": the drive's
     std::string jointModel;     // "": the drive's
     std::string fidelity = "link";  // "link" or "span" (SimulationOptions::fidelity)
-    double tolerance = 1e-5;
-    double step = 2.5e-6;
+    double tolerance = solverDefaults(Scene::TimingDrive).tolerance;
+    double step = 0.0;
     double newmarkGamma = 0.5;
     bool preload = true;
     double tensionerPreload = -1.0, tensionerStiffness = -1.0, tensionerDamping = -1.0,

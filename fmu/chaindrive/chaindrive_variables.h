@@ -96,7 +96,7 @@ constexpr Variable kVariables[] = {
   {"link.index",                 kLinkIndex,                Type::Integer, Causality::Parameter, "-1"},
   {"solver.method",              kSolverMethod,             Type::String,  Causality::Parameter, "fixed-verlet"},
   {"solver.tolerance",           kSolverTolerance,          Type::Real,    Causality::Parameter, "1e-5"},
-  {"solver.step",                kSolverStep,               Type::Real,    Causality::Parameter, "2.5e-6"},
+  {"solver.step",                kSolverStep,               Type::Real,    Causality::Parameter, "0"},
   {"solver.preload",             kSolverPreload,            Type::Boolean, Causality::Parameter, "true"},
   {"tensioner.preload",          kTensionerPreload,         Type::Real,    Causality::Parameter, "-1"},
   {"tensioner.stiffness",        kTensionerStiffness,       Type::Real,    Causality::Parameter, "-1"},

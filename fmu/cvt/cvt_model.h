@@ -13,6 +13,7 @@
 
 #include "cvt/cvt_description.h"
 #include "cvt/cvt_outputs.h"
+#include "run/defaults.h"
 #include "simulation_adapter.h"
 #include "cvt_variables.h"
 
@@ -52,9 +53,10 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
   struct Parameters {
     std::string cvtFile;
     int linkIndex = -1;
-    std::string method = "fixed-verlet";
-    double tolerance = 1e-5;
-    double step = 5e-7;
+    // the CVT's defaults (run/defaults.h)
+    std::string method = choiceName(solverDefaults(Scene::Cvt).method);
+    double tolerance = solverDefaults(Scene::Cvt).tolerance;
+    double step = solverDefaults(Scene::Cvt).step;
     double clampingForce = -1.0;  // < 0: the description's
   };
 

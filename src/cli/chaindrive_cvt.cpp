@@ -23,6 +23,7 @@ constexpr const char* kTool = "chaindrive-cvt";
 constexpr double kPi = 3.14159265358979323846;
 
 void usage() {
+  const SolverDefaults& defaults = solverDefaults(Scene::Cvt);
   std::fprintf(stderr,
                "usage: chaindrive-cvt [--cvt FILE] [--rpm R] [--load-torque T] [--duration S | --revolutions R]\n"
                "                      [--output-step S] [--method NAME] [--step S] [--rtol R] [--monitored-link K]\n"
@@ -34,20 +35,22 @@ void usage() {
                "  --duration S         simulated time [s] (default 0.2); the means over its second half\n"
                "  --revolutions R      simulated time in chain revolutions (and an output step more, so that\n"
                "                       the last one ends on the output grid), instead of --duration\n"
-               "  --method NAME        fixed-verlet (default), fixed-verlet-implicit-joint-damping, arkode-erk,\n"
+               "  --method NAME        fixed-verlet, fixed-verlet-implicit-joint-damping, arkode-erk,\n"
                "                       arkode-erk-fixed (compliant pins: their friction a regularized law), or\n"
                "                       time-stepping (Moreau-Jean: the pins' friction a complementarity problem),\n"
                "                       time-stepping-rigid-pins (the same with the pins axially rigid: unilateral\n"
-               "                       contacts with Newton impacts at pulley entry)\n"
+               "                       contacts with Newton impacts at pulley entry); default %s\n"
                "  --friction-facets N  time-stepping: facets of the polygon that linearizes a pin's friction\n"
                "                       disc (default 8)\n"
-               "  --step S             fixed step [s] (default 2e-6); arkode-erk: its largest step\n"
-               "  --rtol R             relative tolerance of arkode-erk (default 1e-5)\n"
+               "  --step S             fixed step [s] (default %g); arkode-erk: its largest step\n"
+               "  --rtol R             relative tolerance of arkode-erk (default %g)\n"
                "  --state-in FILE      start from this saved state (chaindrive.state/2; default: the nominal\n"
                "                       state at t = 0); the run lasts the duration from its time\n"
                "  --state-out FILE     save the last state (for another method to continue from)\n"
                "  --csv FILE           the outputs at every output step (default step 5e-5 s)\n"
-               "Prints the assembly and the summary (means and checks) as JSON.\n");
+               "Prints the assembly and the summary (means and checks) as JSON. The defaults of method, step\n"
+               "and tolerance are CVTChain.fmu's (chaindrive-info --defaults).\n",
+               choiceName(cvtMethodOf(CvtRunOptions{})), defaults.step, defaults.tolerance);
 }
 
 struct CvtArguments {

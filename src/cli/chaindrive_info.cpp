@@ -10,6 +10,7 @@
 #include "cli/arguments.h"
 #include "description/drive_description.h"
 #include "assembly/model.h"
+#include "run/defaults.h"
 
 using namespace chaindrive;
 
@@ -19,14 +20,17 @@ constexpr const char* kTool = "chaindrive-info";
 
 void usage() {
   std::puts(
-      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--quiet]\n"
+      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--quiet] | --defaults\n"
       "  Assembles the drive (default: the embedded default drive), prints the closure and pose\n"
-      "  report, and optionally writes the geometry for plotting.");
+      "  report, and optionally writes the geometry for plotting.\n"
+      "  --defaults prints the solver defaults of every entry point per scene and fidelity as JSON\n"
+      "  (the one table, src/run/defaults.h: method, step [s], tolerance).");
 }
 
 struct InfoArguments {
   std::string drive, geometry;
   bool quiet = false;
+  bool defaults = false;  // print the defaults table instead
 };
 
 // The options in any order (an option without its value is an unknown argument); -h/--help ends
@@ -38,6 +42,7 @@ InfoArguments parseArguments(cli::Arguments& args) {
     if (a == "--drive" && args.hasValue()) r.drive = args.value();
     else if (a == "--geometry" && args.hasValue()) r.geometry = args.value();
     else if (a == "--quiet") r.quiet = true;
+    else if (a == "--defaults") r.defaults = true;
     else throw std::invalid_argument("unknown argument '" + a + "'");
   }
   return r;
@@ -155,7 +160,20 @@ void writeGeometry(const Model& m, const std::string& path) {
   std::ofstream(path) << g.dump(1) << "\n";
 }
 
+// The defaults table as {scene: {fidelity: {method, step_s, tolerance}}}.
+void printDefaults() {
+  nlohmann::json table = nlohmann::json::object();
+  for (const SolverDefaults& row : kSolverDefaults)
+    table[choiceName(row.scene)][choiceName(row.fidelity)] = {
+        {"method", choiceName(row.method)}, {"step_s", row.step}, {"tolerance", row.tolerance}};
+  std::printf("%s\n", table.dump(1).c_str());
+}
+
 int run(const InfoArguments& r) {
+  if (r.defaults) {
+    printDefaults();
+    return 0;
+  }
   const DriveDescription desc = cli::loadDrive(r.drive);
   const Model m = assemble(desc);
   if (!r.quiet) printReport(m);

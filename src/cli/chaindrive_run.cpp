@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "cli/arguments.h"
 #include "cli/contact_stats.h"
 #include "description/drive_description.h"
+#include "run/defaults.h"
 #include "run/inputs.h"
 #include "assembly/model.h"
 #include "run/simulation.h"
@@ -38,21 +40,23 @@ double cpuSeconds() {
 
 void usage() {
   const std::string names = listOfNames(choiceNames<IntegratorMethod>());
+  const SolverDefaults& link = solverDefaults(Scene::TimingDrive, Fidelity::Link);
+  const SolverDefaults& span = solverDefaults(Scene::TimingDrive, Fidelity::Span);
   std::printf(
       "usage: chaindrive-run [options]\n"
       "  --drive FILE            drive description (default: the embedded default drive)\n"
       "  --rpm N                 mean crankshaft speed [rpm] (default 3000)\n"
       "  --cycles N              engine cycles to simulate, 720 deg crank each (default 2)\n"
       "  --duration S            simulated time [s] instead of --cycles\n"
-      "  --integrator NAME       %s (default arkode-erk)\n"
+      "  --integrator NAME       %s (default %s)\n"
       "  --contact-method M      compliant, event-driven or time-stepping (default: the drive's)\n"
       "  --joint-model J         journal-bearing or ideal (default: the drive's)\n"
       "  --fidelity F            link (the link-by-link model, default) or span (the span model:\n"
       "                          rotors and spans, src/span/)\n"
       "  --rtol X                relative tolerance of adaptive integrators and of the event-driven\n"
-      "                          method (default 1e-5)\n"
-      "  --step S                step of fixed-step integrators and of time stepping [s] (default 2e-6);\n"
-      "                          they step on the grid t0 + k S\n"
+      "                          method (default %g)\n"
+      "  --step S                step of fixed-step integrators and of time stepping [s] (default: the\n"
+      "                          fidelity's, link %g, span %g); they step on the grid t0 + k S\n"
       "  --newmark-gamma G       fixed-newmark: 0.5 keeps every mode's amplitude, up to 1 damps the\n"
       "                          modes the step cannot resolve (default 0.5)\n"
       "  --max-step S            largest step of adaptive integrators [s] (default unlimited)\n"
@@ -76,8 +80,9 @@ void usage() {
       "                          --cycles/--duration then count from that time\n"
       "  --save-state FILE       save the final state (for --initial-state)\n"
       "  --summary FILE.json     write the run's figures (CPU time, counters, failure and its kind)\n"
-      "  --quiet                 print the summary only\n",
-      names.c_str());
+      "  --quiet                 print the summary only\n"
+      "The defaults of method, step and tolerance are the FMU's (chaindrive-info --defaults).\n",
+      names.c_str(), choiceName(link.method), link.tolerance, link.step, span.step);
 }
 
 // ---- the command line ----
@@ -86,6 +91,9 @@ struct RunArguments {
   std::string drive, inputsCsv, outPath, initialState, saveState, summaryPath;
   double rpm = 3000.0, cycles = 2.0, duration = -1.0, outputStep = 1e-4;
   SimulationOptions opt;
+  // given on the command line; otherwise the fidelity's defaults (run/defaults.h)
+  std::optional<IntegratorMethod> method;
+  std::optional<double> step, rtol;
   std::vector<std::pair<std::string, double>> loads;
   std::vector<HarmonicInputs::Order> orders;
   bool quiet = false;
@@ -129,7 +137,7 @@ const Option kOptions[] = {
   {"--rpm",               [](Arguments& a, RunArguments& r) { r.rpm = a.number(); }},
   {"--cycles",            [](Arguments& a, RunArguments& r) { r.cycles = a.number(); }},
   {"--duration",          [](Arguments& a, RunArguments& r) { r.duration = a.number(); }},
-  {"--integrator",        [](Arguments& a, RunArguments& r) { r.opt.integrator.method = a.choice<IntegratorMethod>(); }},
+  {"--integrator",        [](Arguments& a, RunArguments& r) { r.method = a.choice<IntegratorMethod>(); }},
   {"--contact-method",    [](Arguments& a, RunArguments& r) { r.opt.contactMethod = a.choice<ContactMethod>(); }},
   {"--joint-model",       [](Arguments& a, RunArguments& r) { r.opt.jointModel = a.choice<JointModel>(); }},
   {"--fidelity",          [](Arguments& a, RunArguments& r) { r.opt.fidelity = a.choice<Fidelity>(); }},
@@ -137,8 +145,8 @@ const Option kOptions[] = {
   {"--gap-tolerance",     [](Arguments& a, RunArguments& r) { r.opt.integrator.rigid.gapTolerance = a.number(); }},
   {"--record-lcps",       recordLcps},
   {"--max-event-rate",    [](Arguments& a, RunArguments& r) { r.opt.integrator.eventDriven.maxEventsPerSecond = a.number(); }},
-  {"--rtol",              [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.rtol = a.number(); }},
-  {"--step",              [](Arguments& a, RunArguments& r) { r.opt.integrator.fixed.step = a.number(); }},
+  {"--rtol",              [](Arguments& a, RunArguments& r) { r.rtol = a.number(); }},
+  {"--step",              [](Arguments& a, RunArguments& r) { r.step = a.number(); }},
   {"--newmark-gamma",     [](Arguments& a, RunArguments& r) { r.opt.integrator.newmark.gamma = a.number(); }},
   {"--max-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.maxStep = a.number(); }},
   {"--min-step",          [](Arguments& a, RunArguments& r) { r.opt.integrator.adaptive.minStep = a.number(); }},
@@ -167,6 +175,10 @@ RunArguments parseArguments(Arguments& args) {
     option->apply(args, r);
   }
   if (args.help()) return r;
+  applySolverDefaults(solverDefaults(Scene::TimingDrive, r.opt.fidelity), r.opt.integrator);
+  r.opt.integrator.method = r.method.value_or(r.opt.integrator.method);
+  r.opt.integrator.fixed.step = r.step.value_or(r.opt.integrator.fixed.step);
+  r.opt.integrator.adaptive.rtol = r.rtol.value_or(r.opt.integrator.adaptive.rtol);
   if (!(r.rpm > 0.0 && r.rpm <= 20000.0)) throw std::invalid_argument("--rpm must be in (0, 20000]");
   if (!(r.outputStep > 0.0)) throw std::invalid_argument("--output-step must be positive");
   if (!(r.opt.integrator.adaptive.rtol > 0.0 && r.opt.integrator.adaptive.rtol < 1.0)) throw std::invalid_argument("--rtol must be in (0, 1)");

@@ -14,6 +14,7 @@
 #include "dynamics/dynamics.h"
 #include "integrators/ode_system.h"
 #include "nonsmooth/system.h"
+#include "run/defaults.h"
 #include "run/state_file.h"
 
 namespace chaindrive {
@@ -26,14 +27,11 @@ struct CvtRunOptions {
   double statisticsFrom = 0.5;    // the means start at this fraction of the duration
   ContactMethod contactMethod = ContactMethod::Compliant;  // or time stepping: the pins' friction as
                                                           // complementarity
-  IntegratorSettings integrator;  // method and step (default: fixed-verlet at 2 us; time stepping: its step)
+  IntegratorSettings integrator;  // method, step and tolerance (default: the CVT's row of run/defaults.h)
   int monitoredLink = -1;         // the pin of the Figure 9 outputs (-1: the model's)
   std::optional<StateSnapshot> start;  // a saved state to start from (else the nominal state at 0);
                                        // the run lasts `duration` from its time
-  CvtRunOptions() {
-    integrator.method = IntegratorMethod::FixedVerlet;
-    integrator.fixed.step = 2e-6;
-  }
+  CvtRunOptions() { applySolverDefaults(solverDefaults(Scene::Cvt), integrator); }
 };
 
 /// A CVT run's method by one name: an integrator of the compliant pins, or time stepping (the

@@ -80,6 +80,10 @@ def test_main_job_open_loop_quick(tmp_path):
         assert s["cycles"] == 3 and np.isfinite(s["mean"]) and s["ci95"] > 0.0, (key, s)
     # the tight span carries the camshaft torques: its mean force exceeds the slack span's
     assert summary["chain.Ftight.mean"]["mean"] > summary["chain.Fslack.mean"]["mean"]
+    # its own check: the energy balance over the counted cycles, within its limit at the default step
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert abs(run["checks"]["energyBalanceError"]) < run["checks"]["energyBalanceLimit"]
+    assert run["warnings"] == [] and run["notes"] == [] and "checks: energy balance" in p.stdout
 
 
 def test_main_job_span_fidelity_quick(tmp_path):
@@ -94,6 +98,7 @@ def test_main_job_span_fidelity_quick(tmp_path):
     assert all(s["cycles"] == 3 and np.isfinite(s["mean"]) for s in summary.values())
     run = json.loads((tmp_path / "run.json").read_text())
     assert run["fidelity"] == "span" and run["solverStep_s"] == 2e-5
+    assert len(run["notes"]) == 1 and "note: span fidelity: outside the accuracy it was checked for" in p.stdout
     # the link model costs about 9 CPU s per simulated s inside fmi2DoStep; the span model a few hundredths
     assert 0.0 < run["doStepCpuPerSimulatedSecond"] < 2.0
     for name in ("outputs.csv", "time_histories.png", "cycle_statistics.png", "spectra.png", "link_cycle.png"):
