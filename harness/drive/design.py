@@ -26,13 +26,13 @@ PITCH = 0.009525          # ISO 606 06B-1 (3/8 in)
 ROLLER_D = 0.00635        # ISO 606 06B-1 d1
 PLATE_H = 0.00826         # ISO 606 06B-1 h2 (max inner plate depth)
 N_LINKS = 120             # paper, section 4.2
-LINK_MASS = 0.0039        # 0.41 kg/m (06B-1 catalogue mass, DOMAIN 0.30-0.45 kg/m) times the pitch
+LINK_MASS = 0.0039        # 0.41 kg/m (06B-1 catalogue mass, typical 0.30-0.45 kg/m) times the pitch
 # rollers, pins and bushings (about half the mass) at the pins, plates as p x h rectangles
 LINK_INERTIA = LINK_MASS * (PITCH**2 / 8.0 + (PITCH**2 + PLATE_H**2) / 24.0)
-Z_CRANK, Z_CAM = 21, 42   # DOMAIN: 19-23 / 38-46, 2:1
-CAM_SPACING = 0.140       # DOMAIN: cam-cam 110-140 mm (the 42-tooth tip circles need > 134 mm)
+Z_CRANK, Z_CAM = 21, 42   # typical: 19-23 / 38-46, 2:1
+CAM_SPACING = 0.140       # typical: cam-cam 110-140 mm (the 42-tooth tip circles need > 134 mm)
 CAM_INERTIA = 1.0e-3      # camshaft with lobes and sprocket [E]
-JOINT_K = 1.2e8           # DOMAIN: per-link stiffness 1e8-1.5e8 N/m
+JOINT_K = 1.2e8           # typical: per-link stiffness 1e8-1.5e8 N/m
 JOINT_C = 250.0           # lubricated pin-bushing: 18 % of critical for one link, 1.3 % for a 2 kHz span mode [E]
 # tension guide (slack span) and fixed guide (tight span)
 TG_FACE_R = 0.35
@@ -44,7 +44,7 @@ G_FACE_R = 0.80
 G_MARGIN = 0.030
 G_DEFLECT = 0.0015
 G_AT = 0.50
-# tensioner: DOMAIN spring preload 10-40 N at 2-10 N/mm, oil 1-5 bar; hydraulic damping [E]
+# tensioner: typical spring preload 10-40 N at 2-10 N/mm, oil 1-5 bar; hydraulic damping [E]
 TENS_PRELOAD = 60.0      # spring 25 N + 3 bar oil on a 12 mm plunger (34 N)
 TENS_K = 5000.0
 TENS_C = 3000.0           # plunger retracting (leak-down through the gap)
