@@ -52,7 +52,7 @@ from .tables import tables
 RUN_IN_CYCLES = 2          # the run-in: at least this many engine cycles ...
 RUN_IN_TIME = 0.15         # [s] ... and at least this long
 DEFAULT_RPM = 3000.0       # [rpm] mean engine speed of the default run
-DEFAULT_CYCLES = 120       # counted engine cycles of the default run (see README: 1 % confidence)
+DEFAULT_CYCLES = 120       # counted engine cycles of the default run (see docs/run.md: 1 % confidence)
 # the tables' mean speed over time (the harmonic mean of the speed over crank angle) lies up to
 # 0.2 % below the nominal speed (at 1000 rpm): 120 cycles then take a quarter of a cycle longer
 SPEED_MARGIN = 0.005

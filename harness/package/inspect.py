@@ -1,7 +1,7 @@
 """What a shipped binary asks of the machine that loads it, read with binutils' objdump (which
 reads ELF and PE alike): an ELF shared library's symbol versions, needed libraries, exports and
 imports; a DLL's imported DLLs and functions and its exports. The package command prints these
-and tests/python/package checks them against what the README promises."""
+and tests/python/package checks them against what docs/fmu.md promises."""
 import functools
 import os
 import pathlib

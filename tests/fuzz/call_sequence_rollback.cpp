@@ -1,5 +1,5 @@
 // The rollback check: ChainDrive promises that a communication step repeated from a restored FMU
-// state gives the same outputs, bit for bit (README, tests/python/test_fmu.py). Here the state is
+// state gives the same outputs, bit for bit (docs/fmu.md, tests/python/fmu/test_fmu.py). Here the state is
 // taken at random points of a random sequence, also before the end of the initialization.
 #include <cstdio>
 #include <cstring>

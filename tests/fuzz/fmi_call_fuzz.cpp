@@ -23,7 +23,7 @@ namespace {
 using namespace chaindrive::fuzz;
 
 // Measured so that the sanitizer stage of ./run.sh test (build, ctest, this fuzz) stays within
-// about 12 minutes on 2 cores; see README.md, Tests.
+// about 12 minutes on 2 cores; see docs/tests.md.
 constexpr std::uint64_t kDefaultCount = 3000;
 
 void usage() {

@@ -189,7 +189,7 @@ struct MethodCombination {
 };
 
 // Event-driven integration with ideal joints runs into its event storm in the second 10 us
-// (README, Known limits): some 15 s under the sanitizers, so it gets one step.
+// (docs/limits.md): some 15 s under the sanitizers, so it gets one step.
 constexpr MethodCombination kMethodCombinations[] = {
     {"arkode-erk", "compliant", "journal-bearing", 2},    {"arkode-erk-fixed", "", "", 2},
     {"cvode-bdf-klu", "", "", 2},                         {"cvode-bdf-band", "", "", 2},

@@ -21,7 +21,7 @@ def test_short_run_writes_finite_outputs(tmp_path):
     assert len(d["time"]) == 41
     for k, v in d.items():
         assert np.all(np.isfinite(v)), k
-    # tensioner force physically plausible: positive, below 2 kN (DOMAIN: dynamic peaks 1-3 kN at resonance)
+    # tensioner force physically plausible: positive, below 2 kN (typical: dynamic peaks 1-3 kN at resonance)
     assert 0.0 <= d["tensioner.F"].min() and d["tensioner.F"].max() < 2000.0
     assert s["cpu_per_sim_s"] > 0 and s["steps"] > 1000
 

@@ -30,7 +30,7 @@ def test_outputs_finite_and_tensioner_force_plausible(closed_loop_2000):
         if not k.startswith("input."):
             assert np.all(np.isfinite(v)), k
     F = d["tensioner.F"][sel]
-    # DOMAIN: quasi-static tensioner force 100-400 N, dynamic peaks 1-3 kN at resonance; the
+    # typical: quasi-static tensioner force 100-400 N, dynamic peaks 1-3 kN at resonance; the
     # default tensioner's preload is 60 N, so a mean of 30-400 N and peaks below 3 kN
     assert 30.0 < F.mean() < 400.0
     assert F.min() >= 0.0 and F.max() < 3000.0

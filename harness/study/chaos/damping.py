@@ -5,7 +5,7 @@ import math
 from ...drive.description import geometry
 from ..methods import default_drive_json
 
-ROLLER_SPEEDS = (1.0, 2.0, 3.0, 5.0)   # [m/s] roller seating impacts: about omega p (DOMAIN.md)
+ROLLER_SPEEDS = (1.0, 2.0, 3.0, 5.0)   # [m/s] roller seating impacts: about omega p
 GUIDE_SPEEDS = (0.1, 0.3, 1.0, 3.0)    # [m/s] normal speeds of link plates meeting a guide
 STEEL_DENSITY = 7800.0            # [kg/m^3]
 OIL_VISCOSITY = (0.0085, 0.05)    # [Pa s] engine oil SAE 5W-30 hot (100 C) and warm (40 C) [E]

@@ -60,7 +60,7 @@ def step_bound(drive_path, rpm):
     link (mass m) with the damping coefficient c of: its two joints with neighbours in antiphase
     (c = 4 c_joint), a roller or plate contact at its impact peak (Hunt-Crossley: c = 1.5 alpha
     F_N, with F_N = v sqrt(k m), the peak force of an impact at speed v = omega_crank p, the
-    roller seating speed of DOMAIN.md), times STABILITY_MARGIN for the springs acting too."""
+    typical roller seating speed), times STABILITY_MARGIN for the springs acting too."""
     d = json.loads(pathlib.Path(drive_path).read_text())
     ch = d["chain"]
     m = ch["linkMass"]

@@ -1,5 +1,5 @@
-// System tests of the compliant link-by-link model against the analytical references of
-// DOMAIN.md: energy conservation, the static tension split, polygonal action.
+// System tests of the compliant link-by-link model against analytical references: energy
+// conservation, the static tension split, polygonal action.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -91,7 +91,7 @@ TEST(Energy, AdaptiveDriftShrinksWithTolerance) {
   EXPECT_LT(dTight, 0.2 * dLoose);
 }
 
-// Static tension split (DOMAIN reference 3): at low speed with constant camshaft torques the
+// Static tension split (a classic result): at low speed with constant camshaft torques the
 // mean tight-span force minus the mean slack-span force equals sum(M_cam) / R_cam. The probes sit
 // next to the camshaft sprockets (tight: after the intake cam, slack: before the exhaust cam), so
 // no guide friction acts between them. Tolerance 3 %; the polygonal action changes the
@@ -127,7 +127,7 @@ TEST(Balance, TightMinusSlackEqualsCamTorquesOverPitchRadius) {
   EXPECT_NEAR(tight - slack, expected, 0.03 * expected);
 }
 
-// Polygonal action (DOMAIN reference 1): with a very stiff chain, constant crankshaft speed and
+// Polygonal action (a classic result): with a very stiff chain, constant crankshaft speed and
 // no load, the camshaft speed ripples at the crankshaft meshing frequency z n / 60.
 TEST(Polygon, CamshaftSpeedRipplesAtTheMeshingFrequency) {
   auto m = std::make_shared<const Model>(assemble(modifiedDefault([](json& j) {

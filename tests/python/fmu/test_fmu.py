@@ -80,7 +80,7 @@ def test_run_is_finite_and_plausible():
     out = solo_run(steps=40)
     assert np.all(np.isfinite(out))
     F = out[:, 0]
-    assert F.min() >= 0.0 and F.max() < 3000.0  # DOMAIN: dynamic peaks 1-3 kN at resonance
+    assert F.min() >= 0.0 and F.max() < 3000.0  # typical: dynamic peaks 1-3 kN at resonance
 
 
 def test_interleaved_instances_reproduce_their_solo_runs_bit_for_bit():

@@ -55,9 +55,9 @@ def test_camshaft_torque_orders_mean_and_amplitude(rpm):
         # orders that are not multiples of 2 carry only noise (cylinders are identical)
         odd = [amp[b] for b in range(1, 41) if b % 4 != 0]
         assert max(odd) < 0.05 * amp[largest], c
-        # DOMAIN: mean 1-4 N m per camshaft; the model gives 3.2-3.7 (bucket friction + bearing drag)
+        # typical: mean 1-4 N m per camshaft; the model gives 3.2-3.7 (bucket friction + bearing drag)
         assert 0.5 < y.mean() < 5.0, (c, y.mean())
-        # alternating amplitude (half peak-to-peak): DOMAIN estimates +-10-25 N m [E]; this model,
+        # alternating amplitude (half peak-to-peak): typical estimates +-10-25 N m [E]; this model,
         # with mid-range springs (220 N, 38 N/mm), gives +-6..10 N m (falling with speed, as the
         # valve inertia unloads the nose). 5..30 N m accepts both and rejects unit or sign slips
         # (x2 from a missing valve, x1000 from mm) and a missing spring or lobe.
@@ -73,7 +73,7 @@ def test_crankshaft_speed_order2_falls_with_inverse_square_of_speed():
         assert abs(s.mean() - rpm) < 0.01          # mean over the crank angle = the engine speed
         # speed amplitude of order k = k * n * angle amplitude [rad]
         a2[rpm] = math.degrees(spectrum(s)[4] / (2.0 * rpm))
-    law = {rpm: 2.7 * (800.0 / rpm) ** 2 for rpm in RPMS}   # DOMAIN: 2.7 deg at 800 rpm, 1/n^2
+    law = {rpm: 2.7 * (800.0 / rpm) ** 2 for rpm in RPMS}   # typical: 2.7 deg at 800 rpm, 1/n^2
     assert abs(a2[1000] / law[1000] - 1.0) < 0.05
     for rpm in RPMS:
         # the crank nose sees the rigid-body 1/n^2 amplitude times the first torsional mode's
