@@ -80,11 +80,17 @@ def level_quantities(d):
 ORDER_SIGNALS = (("tensioner.F", "N", 1.0, ""), ("tensionGuide.phi", "deg", 180.0 / math.pi, "_deg"))
 
 
+def counted_spans(crank_phi, run_in_cycles, cycles=None):
+    """cycle_spans() of the counted cycles: the first `cycles` whole cycles after the run-in (all
+    when None)."""
+    return cycle_spans(crank_phi, run_in_cycles)[:cycles]
+
+
 def per_cycle(d, run_in_cycles, meshing_order, cycles=None):
     """Per-cycle values of every headline quantity: {key: (unit, array over the counted cycles)},
     the first `cycles` whole cycles after the run-in (all when None); the orders are 2, 4, 6, 8 and
     the crankshaft meshing order."""
-    spans = cycle_spans(d["crankshaft.phi"], run_in_cycles)[:cycles]
+    spans = counted_spans(d["crankshaft.phi"], run_in_cycles, cycles)
     cycles = [slice(i0, i1) for i0, i1, _ in spans]
     out = {key: (unit, np.array([float(f(s)) for s in cycles])) for key, unit, f in level_quantities(d)}
     orders = list(ORDERS) + [meshing_order]
@@ -101,6 +107,21 @@ def order_amplitudes_per_cycle(d, spans, name, orders, scale=1.0):
     phi = d["crankshaft.phi"]
     amps = [order_amplitudes(phi[i0:i1], d[name][i0:i1], phi0, orders) for i0, i1, phi0 in spans]
     return scale * np.array(amps).reshape(len(spans), len(orders))
+
+
+def half_orders(highest):
+    """The engine orders one engine cycle resolves (DFT bins of 720 deg: half orders), from 0.5 up
+    to and including `highest`."""
+    return [0.5 * i for i in range(1, int(math.floor(2.0 * highest + 1e-9)) + 1)]
+
+
+def order_spectrum(d, spans, name, orders, scale=1.0):
+    """(means, 95 % confidence half-widths) over the cycles of spans of the amplitudes of the
+    engine orders of output `name` (times scale): the summary's own statistic of its order
+    amplitudes (per_cycle, summarize), at any orders; arrays over orders."""
+    amps = order_amplitudes_per_cycle(d, spans, name, orders, scale)
+    stats = [interval(amps[:, i])[:2] for i in range(len(orders))]
+    return np.array([mean for mean, _ in stats]), np.array([half for _, half in stats])
 
 
 def headline_keys(meshing_order):
@@ -154,6 +175,11 @@ def summarize(per_cycle_values):
 def summary(d, run_in_cycles, meshing_order):
     """summarize() of the record d after run_in_cycles engine cycles."""
     return summarize(per_cycle(d, run_in_cycles, meshing_order))
+
+
+def in_percent(s):
+    """A summary entry of a fraction (mean, ci95) in % for printing."""
+    return dict(s, mean=100.0 * s["mean"], ci95=100.0 * s["ci95"], unit="%")
 
 
 def format_line(key, s, periods="cycles"):

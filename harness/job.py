@@ -247,8 +247,6 @@ def config_of(ap, args):
 
 
 SHOWN_CYCLES = 4  # counted cycles shown in the time histories after the run-in
-CYCLE_PLOT_KEYS = ("tensioner.F.mean", "tensioner.F.peakToPeak", "tensionGuide.phi.peakToPeak_deg",
-                   "tensioner.F.order2", "tensioner.F.order8")
 
 
 def write_plots(out, d, config, t0, per_cycle, summary):
@@ -258,11 +256,10 @@ def write_plots(out, d, config, t0, per_cycle, summary):
     drive_picture.drive_picture(out / "drive.png", config.drive)
     plots.time_histories(out / "time_histories.png", d, rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)",
                          t_end=t0 + SHOWN_CYCLES * 120.0 / rpm, t_counted=t0)
-    plots.cycle_statistics(out / "cycle_statistics.png", per_cycle, summary, title + ", per engine cycle",
-                           CYCLE_PLOT_KEYS)
-    plots.spectra(out / "spectra.png", d, rpm, t0, title + " (counted cycles)")
-    plots.link_cycle(out / "link_cycle.png", d, rpm, title + ", one cycle of the monitored link", t0=t0,
-                     drive=config.drive)
+    plots.cycle_statistics(out / "cycle_statistics.png", per_cycle, summary, title + ", per engine cycle")
+    plots.spectra(out / "spectra.png", d, cycle_stats.counted_spans(d["crankshaft.phi"], config.run_in, config.cycles),
+                  meshing_order(drive_json(config.drive)), title + " (counted cycles)")
+    plots.link_cycle(out / "link_cycle.png", d, rpm, title, t0=t0, drive=config.drive, fidelity=config.fidelity)
     return [out / n for n in ("drive.png", "time_histories.png", "cycle_statistics.png", "spectra.png",
                               "link_cycle.png")]
 

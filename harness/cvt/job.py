@@ -194,7 +194,7 @@ def report(summary, check, result, cpu_per_revolution):
           f"{a['clampingForce'][1] / 1e3:.2f} kN (driving / driven)")
     print("summary: mean over chain revolutions after the run-in, +- the 95 % confidence half-width")
     for key, s in summary.items():
-        print(cycle_stats.format_line(key, s, periods="revolutions"))
+        print(cycle_stats.format_line(key, cycle_stats.in_percent(s) if key == "slip" else s, periods="revolutions"))
     print(f"checks: speed ratio {1 + check['speedRatioError']:.5f} x the geometric {check['geometricRatio']:.4f}; "
           f"(F_tight - F_slack) r2 off the driven torque by {100 * check['torqueBalanceError']:+.2f} % (limit 2 %); "
           f"energy balance {100 * check['energyBalanceError']:+.3f} % of the dissipated energy (limit 1 %); pins in "
@@ -218,7 +218,7 @@ def run(config):
                                                      indent=1) + "\n")
     title = f"{config.rpm:g} rpm, {config.load_torque:g} N m, {config.method} at {config.solver_step * 1e6:g} us"
     pictures = [plots.figure9(out / "cvt_figure9.png", record, spans[-1], title),
-                plots.time_histories(out / "cvt_time_histories.png", record, spans[0][0], title)]
+                plots.time_histories(out / "cvt_time_histories.png", record, spans, title)]
     report(summary, check, result, cpu_per_revolution)
     run_checks.print_lines(warnings, [])
     print(f"  outputs: {out / 'cvt_outputs.csv'}, {out / 'cvt_summary.json'}")

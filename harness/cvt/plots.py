@@ -1,6 +1,11 @@
 """The CVT's plots: the paper's Figure 9 (the forces on one pin and its link's tensile force over
 one chain revolution) and the time histories of speeds, slip and forces."""
+import math
+
+import numpy as np
+
 from ..plots import plt
+from ..plots.plots import RUN_IN_SHADE
 
 PULLEY_SHADES = {0: ("driving pulley", "#dbe9f6"), 1: ("driven pulley", "#fde3c8")}
 
@@ -38,28 +43,52 @@ def figure9(path, d, span, title):
     return path
 
 
-def time_histories(path, d, counted_from, title):
-    """Speeds, slip, strand forces and clamping forces over the whole run; the counted part after
-    the dashed line."""
+ENVELOPE_WINDOWS = 16  # envelope windows per chain revolution in the time histories
+
+
+def envelope(x, window):
+    """(minimum, mean, maximum) of x over consecutive windows of `window` samples (a last partial
+    window dropped): arrays over the windows."""
+    count = len(x) // window
+    w = np.asarray(x[:count * window], float).reshape(count, window)
+    return w.min(axis=1), w.mean(axis=1), w.max(axis=1)
+
+
+def _envelope_plot(ax, t, x, window, label=None, colour=None):
+    """x as its envelope over windows: the band from minimum to maximum and the mean as a line."""
+    low, mean, high = envelope(x, window)
+    centre = envelope(t, window)[1]
+    line, = ax.plot(centre, mean, lw=1.0, color=colour, label=None if label is None else f"{label}: mean")
+    ax.fill_between(centre, low, high, color=line.get_color(), alpha=0.25, lw=0,
+                    label=None if label is None else f"{label}: minimum to maximum")
+
+
+def time_histories(path, d, spans, title):
+    """Speeds [rpm], slip [%], strand forces and clamping forces over the whole run as envelopes
+    (minimum to maximum and mean over windows of 1/ENVELOPE_WINDOWS chain revolution: the pins'
+    passage makes the raw signals solid bands); the run-in, before the counted revolutions
+    (spans), shaded."""
     t = d["time"] * 1e3
-    fig, axes = plt.subplots(4, 1, figsize=(9, 10), sharex=True)
-    axes[0].plot(t, d["drivingSpeed"], label="driving pulley")
-    axes[0].plot(t, d["drivenSpeed"], label="driven pulley")
-    axes[0].set_ylabel("speed [rad/s]")
-    axes[1].plot(t, 100.0 * d["slip"], color="C3")
-    axes[1].set_ylabel("slip [%]")
-    axes[2].plot(t, d["tightStrandForce"], label="tight strand")
-    axes[2].plot(t, d["slackStrandForce"], label="slack strand")
-    axes[2].set_ylabel("strand force [N]")
-    axes[3].plot(t, d["clampingForceDriving"] / 1e3, label="driving pulley")
-    axes[3].plot(t, d["clampingForceDriven"] / 1e3, label="driven pulley")
-    axes[3].set_ylabel("clamping force [kN]")
-    axes[3].set_xlabel("time [ms]")
-    for ax in axes:
-        ax.axvline(t[counted_from], color="grey", ls="--", lw=0.8)
+    window = max(1, (spans[0][1] - spans[0][0]) // ENVELOPE_WINDOWS)
+    rpm_per_rad_s = 60.0 / (2.0 * math.pi)
+    panels = (("speed [rpm]", (("driving pulley", rpm_per_rad_s * d["drivingSpeed"]),
+                               ("driven pulley", rpm_per_rad_s * d["drivenSpeed"]))),
+              ("slip [%]", ((None, 100.0 * d["slip"]),)),
+              ("strand force [N]", (("tight strand", d["tightStrandForce"]), ("slack strand", d["slackStrandForce"]))),
+              ("clamping force [kN]", (("driving pulley", d["clampingForceDriving"] / 1e3),
+                                       ("driven pulley", d["clampingForceDriven"] / 1e3))))
+    fig, axes = plt.subplots(len(panels), 1, figsize=(9, 10.5), sharex=True)
+    for ax, (unit, curves) in zip(axes, panels):
+        for k, (label, x) in enumerate(curves):
+            _envelope_plot(ax, t, x, window, label, colour=f"C{k if len(curves) > 1 else 3}")
+        ax.set_ylabel(unit)
+        ax.axvspan(t[0], t[spans[0][0]], color=RUN_IN_SHADE, lw=0, zorder=0)
+        ax.grid(True, lw=0.3)
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(loc="upper right", fontsize=8)
-    axes[0].set_title("CVT time histories (the counted revolutions after the dashed line)\n" + title, fontsize=10)
+            ax.legend(loc="best", fontsize=7, ncol=2)
+    axes[3].set_xlabel("time [ms]")
+    axes[0].set_title(f"CVT time histories: mean and minimum to maximum over 1/{ENVELOPE_WINDOWS} chain revolution "
+                      f"(run-in shaded)\n{title}", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -28,6 +28,9 @@ def test_short_cvt_job_reports_statistics_checks_and_plots(tmp_path):
     for name in ("cvt_figure9.png", "cvt_time_histories.png", "cvt_outputs.csv"):
         assert (tmp_path / name).stat().st_size > 1000, name
     assert "energy balance" in p.stdout and "revolutions" in p.stdout
+    # the slip printed in % (the summary keeps the fraction)
+    slip = next(line.split() for line in p.stdout.splitlines() if line.split()[:1] == ["slip"])
+    assert float(slip[1]) == pytest.approx(100.0 * stats["slip"]["mean"], rel=1e-3) and slip[4] == "%"
 
 
 def test_revolution_spans_are_whole_revolutions():
