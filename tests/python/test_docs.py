@@ -122,6 +122,15 @@ def test_figure_equals_its_source(doc, line, source, arguments, figure):
         for printed, key in zip(numbers[-len(keys):], keys):
             value = resolve(data, key)
             assert agrees(printed, value), f"{where}: {printed} but {source} {key} is {value}"
+    elif path.suffix == ".nc":  # a sweep's dataset: VARIABLE@COORDINATE=VALUE per number
+        import xarray
+        keys = arguments.split()
+        with xarray.open_dataset(path) as ds:
+            for printed, key in zip(numbers[-len(keys):], keys):
+                name, selector = key.split("@")
+                coordinate, wanted = selector.split("=")
+                value = float(ds[name].sel({coordinate: float(wanted)}).item())
+                assert agrees(printed, value), f"{where}: {printed} but {source} {key} is {value}"
     else:
         quoted = re.fullmatch(r'"(.*)"', arguments)
         assert quoted, f"{where}: a Markdown source is quoted by a text in double quotes"
