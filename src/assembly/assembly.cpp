@@ -308,6 +308,8 @@ void buildTensioner(const DriveDescription& desc, Model& m, std::vector<std::str
   t.stiffness = desc.tensioner.stiffness;
   t.dampingRetract = desc.tensioner.damping;
   t.dampingExtend = desc.tensioner.dampingExtension;
+  t.kind = desc.tensioner.kind;
+  t.hydraulic = desc.tensioner.hydraulic;
   t.nominalStroke = dot(t.pad - t.housing, t.direction);
   if (t.nominalStroke <= 0.0)
     problems.push_back("tensioner.contactPoint: the pad lies behind the housing along 'direction' (stroke " +
@@ -518,7 +520,7 @@ void setRotorOutputSigns(Model& m) {
 }  // namespace
 
 // The state vector (model.h): the 6 link components over all links, each rotor's angle (and rate
-// unless prescribed), then the two energy accumulators.
+// unless prescribed), then the two energy accumulators and a hydraulic tensioner's chamber pressure.
 void layOutState(Model& m) {
   int idx = 6 * m.chain.links;
   for (auto& r : m.rotors) {
@@ -527,6 +529,7 @@ void layOutState(Model& m) {
   }
   m.stateInputWork = idx++;
   m.stateDissipated = idx++;
+  m.stateChamberPressure = m.tensioner.hydraulicChamber() ? idx++ : -1;
   m.nStates = idx;
   m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
 }

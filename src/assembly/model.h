@@ -103,6 +103,9 @@ struct TensionerModel {
   Vec2 housing, direction, pad;  // pad: contact point on the guide at the drawn pose
   double preload = 0.0, stiffness = 0.0, dampingRetract = 0.0, dampingExtend = 0.0;
   double nominalStroke = 0.0;    // dot(pad - housing, direction) at the drawn pose
+  TensionerKind kind = TensionerKind::SpringDamper;
+  HydraulicTensionerDesc hydraulic;  // kind hydraulic: the oil chamber (dynamics/hydraulic_tensioner.h)
+  bool hydraulicChamber() const { return present && kind == TensionerKind::Hydraulic; }
 };
 
 struct ContactLaw {
@@ -158,13 +161,15 @@ struct Model {
   // State layout: the links' states component by component, one array over the links each
   // (x of every link, then y, gamma, vx, vy, omega), so that the per-link loops of the solver run
   // over contiguous memory, several links per vector instruction; then per rotor its angle [,
-  // rate]; then the two energy accumulators (input work, dissipated energy). The generalized
+  // rate]; then the two energy accumulators (input work, dissipated energy); then, with a
+  // hydraulic tensioner, its chamber's gauge pressure. The generalized
   // coordinates (and forces) are laid out alike: x, y, gamma of every link, then one per rotor,
   // so the link positions of a state are its first 3 links entries in generalized order.
   enum LinkComponent { kX = 0, kY = 1, kGamma = 2, kVx = 3, kVy = 4, kOmega = 5 };
   int nStates = 0;
   int nGen = 0;                // generalized force entries: 3 per link + 1 per rotor
   int stateInputWork = -1, stateDissipated = -1;
+  int stateChamberPressure = -1;  // -1: no hydraulic tensioner
   int linkState(int link, int component) const { return component * chain.links + link; }
   int linkGen(int link, int component) const { return component * chain.links + link; }
   int rotorGen(int rotor) const { return 3 * chain.links + rotor; }

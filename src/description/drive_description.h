@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "description/choices.h"
+#include "description/hydraulic_tensioner.h"
 #include "math/vec2.h"
 
 namespace chaindrive {
@@ -97,6 +98,8 @@ struct TensionerDesc {
   double stiffness = 0.0;     // [N/m]
   double damping = 0.0;       // [N s/m] when the plunger retracts (leak-down)
   double dampingExtension = 0.0;  // [N s/m] when the plunger extends (check valve open)
+  TensionerKind kind = TensionerKind::SpringDamper;  // hydraulic: the damping laws above give way to
+  HydraulicTensionerDesc hydraulic;                  // the oil chamber (preload and stiffness: its spring)
 };
 
 struct ContactLawDesc {

@@ -7,22 +7,60 @@
 
 namespace chaindrive {
 
-TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate) {
+namespace {
+
+// The spring's energy: its force's integral from zero force (or, without a rate, the preload's work).
+double springEnergy(const TensionerModel& t, double spring, double stroke) {
+  if (t.stiffness > 0.0) return spring > 0.0 ? spring * spring / (2.0 * t.stiffness) : 0.0;
+  return -t.preload * stroke;
+}
+
+// The hydraulic tensioner's chamber on the plunger beside its spring: its force, flows and powers
+// into r (dynamics/hydraulic_tensioner.h).
+double addChamber(const TensionerModel& t, double stroke, double sDot, const ChamberState& chamber,
+                  TensionerResult& r) {
+  const HydraulicResult h =
+      hydraulicTensioner(t.hydraulic, stroke, sDot, chamber.pressure, chamber.supplyPressure, chamber.viscosity);
+  r.pressureRate = h.pressureRate;
+  r.flows = h.flows;
+  r.supplyPower = h.supplyPower;
+  r.power += h.dissipatedPower;
+  // the compressed oil's energy, p^2 V / (2 K) at the chamber's volume: exact for a constant bulk
+  // modulus, what the energy balance over a run needs (the oil stores little beside what it passes)
+  const double volume = t.hydraulic.chamberVolume + plungerArea(t.hydraulic) * stroke;
+  r.energy += chamber.pressure * chamber.pressure * volume /
+              (2.0 * effectiveBulkModulus(t.hydraulic.oil, chamber.pressure));
+  return h.force;
+}
+
+}  // namespace
+
+double tensionerOilViscosity(const TensionerModel& t) {
+  return t.hydraulicChamber() ? oilViscosity(t.hydraulic.oil, t.hydraulic.oilTemperature) : 0.0;
+}
+
+TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,
+                               const ChamberState& chamber) {
   TensionerResult r;
   const Vec2 arm = rotate(t.pad - pivot, cosA, sinA);
   const Vec2 pad = pivot + arm;
   const double s = dot(pad - t.housing, t.direction);
   const double sDot = dot(crossWz(rate, arm), t.direction);
   const double spring = t.preload + t.stiffness * (t.nominalStroke - s);
-  const double c = sDot < 0.0 ? t.dampingRetract : t.dampingExtend;
-  const double f = std::max(0.0, spring - c * sDot);
-  r.force = f;
   r.stroke = s - t.nominalStroke;
   r.rate = sDot;
+  r.energy = springEnergy(t, spring, r.stroke);
+  double f;
+  if (t.kind == TensionerKind::Hydraulic) {
+    // the plunger does not pull the guide: the chamber's force (>= 0) and the spring's push it
+    f = std::max(0.0, spring + addChamber(t, r.stroke, sDot, chamber, r));
+  } else {
+    const double c = sDot < 0.0 ? t.dampingRetract : t.dampingExtend;
+    f = std::max(0.0, spring - c * sDot);
+    r.power = (std::max(0.0, spring) - f) * sDot;
+  }
+  r.force = f;
   r.torque = cross(arm, f * t.direction);
-  r.power = (std::max(0.0, spring) - f) * sDot;
-  if (t.stiffness > 0.0) r.energy = spring > 0.0 ? spring * spring / (2.0 * t.stiffness) : 0.0;
-  else r.energy = -t.preload * (s - t.nominalStroke);
   return r;
 }
 
@@ -33,18 +71,20 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
   if (w.x != 0.0) addConstant(&d.gen[m.linkGen(0, Model::kX)], w.x, n);  // (component by component)
   if (w.y != 0.0) addConstant(&d.gen[m.linkGen(0, Model::kY)], w.y, n);
   TensionerResult t;
-  evaluateRotorForces(m, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.gen.data() + m.rotorGen(0), t,
-                      powerInput, powerDissipated);
+  evaluateRotorForces(m, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.chamber,
+                      d.gen.data() + m.rotorGen(0), t, powerInput, powerDissipated);
   if (m.tensioner.present) {
     d.tensionerForce = t.force;
     d.tensionerStroke = t.stroke;
     d.tensionerRate = t.rate;
+    d.chamberPressureRate = t.pressureRate;
+    d.tensionerFlows = t.flows;
   }
 }
 
 void evaluateRotorForces(const Model& m, const InputValues& in, const double* cosA, const double* sinA,
-                         const double* rate, double* rotorGen, TensionerResult& tensioner, double& powerInput,
-                         double& powerDissipated) {
+                         const double* rate, const ChamberState& chamber, double* rotorGen, TensionerResult& tensioner,
+                         double& powerInput, double& powerDissipated) {
   // guides: pivot friction and weight
   for (const GuideModel& g : m.guides) {
     if (g.rotor < 0) continue;
@@ -59,9 +99,12 @@ void evaluateRotorForces(const Model& m, const InputValues& in, const double* co
   // tensioner
   if (m.tensioner.present) {
     const int r = m.tensioner.rotor;
-    tensioner = tensionerForce(m.tensioner, m.rotors[r].axis, cosA[r], sinA[r], rate[r]);
+    ChamberState oil = chamber;
+    oil.supplyPressure = in.supplyPressure;
+    tensioner = tensionerForce(m.tensioner, m.rotors[r].axis, cosA[r], sinA[r], rate[r], oil);
     rotorGen[r] += tensioner.torque;
     powerDissipated += tensioner.power;
+    powerInput += tensioner.supplyPower;
   }
   // load torques on free sprockets (positive opposes the running direction), drive power
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
@@ -89,7 +132,9 @@ double bodyPotentialEnergy(const Model& m, const Data& d, double& gravityEnergy)
   }
   if (m.tensioner.present) {
     const int r = m.tensioner.rotor;
-    e += tensionerForce(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r]).energy;
+    ChamberState oil = d.chamber;
+    oil.supplyPressure = d.inputs.supplyPressure;
+    e += tensionerForce(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r], oil).energy;
   }
   return e;
 }

@@ -14,9 +14,16 @@ struct TensionerResult {
   double rate = 0.0;    // [m/s]
   double torque = 0.0;  // [N m] on the guide rotor (math sense)
   double power = 0.0;   // dissipated [W]
-  double energy = 0.0;  // spring energy [J]
+  double energy = 0.0;  // spring energy [J], and the compressed oil's
+  double supplyPower = 0.0;    // [W] the oil supply's (hydraulic)
+  double pressureRate = 0.0;   // [Pa/s] of the chamber (hydraulic)
+  HydraulicFlows flows;        // [m3/s] (hydraulic)
 };
-TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate);
+TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,
+                               const ChamberState& chamber);
+
+/// The oil's viscosity of a model's hydraulic tensioner at its temperature (0 without one).
+double tensionerOilViscosity(const TensionerModel& t);
 
 /// Adds the body forces to d.gen, sets the tensioner outputs; returns {input power, dissipated power}.
 void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated);
@@ -25,8 +32,8 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
 /// and weight, the tensioner, load torques on free sprockets and the power of the prescribed
 /// drive. Adds to rotorGen (one entry per rotor, math sense); cosA, sinA, rate per rotor.
 void evaluateRotorForces(const Model& m, const InputValues& in, const double* cosA, const double* sinA,
-                         const double* rate, double* rotorGen, TensionerResult& tensioner, double& powerInput,
-                         double& powerDissipated);
+                         const double* rate, const ChamberState& chamber, double* rotorGen, TensionerResult& tensioner,
+                         double& powerInput, double& powerDissipated);
 
 /// Potential energy of gravity (links and guide weights) and the tensioner spring.
 double bodyPotentialEnergy(const Model& m, const Data& d, double& gravityEnergy);

@@ -6,14 +6,25 @@
 #include <vector>
 
 #include "assembly/model.h"
+#include "dynamics/hydraulic_tensioner.h"
 #include "math/vec2.h"
 
 namespace chaindrive {
 
 /// Input values at one instant. Signs are those users see: the crankshaft speed is positive in
 /// the running direction, a load torque is positive when it opposes the running direction.
+/// What a hydraulic tensioner's chamber needs beyond the plunger's motion: its state (the gauge
+/// pressure), the supply's gauge pressure (an input) and the oil's viscosity at its temperature
+/// (constant over a run: the work area computes it once). Unused by the spring-damper law.
+struct ChamberState {
+  double pressure = 0.0;        // [Pa]
+  double supplyPressure = 0.0;  // [Pa]
+  double viscosity = 0.0;       // [Pa s]
+};
+
 struct InputValues {
   double crankSpeed = 0.0;         // [rad/s] of the driven sprocket
+  double supplyPressure = 0.0;     // [Pa] gauge, of the oil feeding a hydraulic tensioner
   double crankAcceleration = 0.0;  // [rad/s^2] (used by the acceleration-level contact methods)
   std::vector<double> loadTorque;  // [N m] per rotor (only free sprockets use it)
   double ratio = 0.0;              // a CVT's transmission ratio (its sheaves follow it; 0: the assembled one)
@@ -29,9 +40,13 @@ class InputSignal {
 /// Inputs held constant (co-simulation: the value set before a communication step).
 class HeldInputs : public InputSignal {
  public:
-  explicit HeldInputs(const Model& m) { values.loadTorque.assign(m.rotors.size(), 0.0); }
+  explicit HeldInputs(const Model& m) {
+    values.loadTorque.assign(m.rotors.size(), 0.0);
+    values.supplyPressure = m.tensioner.hydraulic.supplyPressure;
+  }
   void evaluate(double, InputValues& v) const override {
     v.crankSpeed = values.crankSpeed;
+    v.supplyPressure = values.supplyPressure;
     v.crankAcceleration = 0.0;
     for (std::size_t i = 0; i < v.loadTorque.size() && i < values.loadTorque.size(); ++i) v.loadTorque[i] = values.loadTorque[i];
     v.ratio = values.ratio;
@@ -203,8 +218,11 @@ struct Data {
                                               // generalized coordinates (model.h)
   // a CVT's sheaves at the ratio input (dynamics/pin_sheave.h): each pulley's free and running radius
   std::vector<double> pulleyFreeRadius, pulleyRunningRadius;  // (pulleys) [m]
-  // tensioner
+  // tensioner; a hydraulic one's chamber: its state and viscosity in, its rate and flows out
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
+  ChamberState chamber;
+  double chamberPressureRate = 0.0;   // [Pa/s]
+  HydraulicFlows tensionerFlows;      // [m3/s]
   // power terms
   double powerInput = 0.0, powerDissipated = 0.0;
   long long rhsEvaluations = 0;

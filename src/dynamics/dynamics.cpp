@@ -82,6 +82,7 @@ Data::Data(const Model& m)
       windows(m.chain.links, static_cast<int>(m.sprockets.size()), static_cast<int>(m.guides.size())),
       rollerHints(static_cast<int>(m.sprockets.size()), m.chain.links) {
   inputs.loadTorque.assign(m.rotors.size(), 0.0);
+  chamber.viscosity = tensionerOilViscosity(m.tensioner);
   for (const PulleyModel& p : m.pulleys) {
     pulleyFreeRadius.push_back(p.freeRadius);
     pulleyRunningRadius.push_back(p.runningRadius);
@@ -118,6 +119,7 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   } else {
     d.nContacts = 0;
   }
+  d.chamber.pressure = m.stateChamberPressure >= 0 ? y[m.stateChamberPressure] : 0.0;
   evaluateBodyForces(m, d, pIn, pDiss);
   d.powerInput = pIn;
   d.powerDissipated = pDiss;
@@ -146,6 +148,7 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
   // the energy accumulators integrate the powers of this evaluation
   ydot[m.stateInputWork] = d.powerInput;
   ydot[m.stateDissipated] = d.powerDissipated;
+  if (m.stateChamberPressure >= 0) ydot[m.stateChamberPressure] = d.chamberPressureRate;
 }
 
 EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {

@@ -32,6 +32,9 @@ struct HydraulicResult {
   double dissipatedPower = 0.0;  // [W] in the valves and the leak gap
 };
 
+/// The chamber's gauge pressure at rest [Pa]: the supply's less the check valve's cracking
+/// pressure (the valve just closed; at least 0), the start state of a run.
+double chamberRestPressure(const HydraulicTensionerDesc& t, double supplyPressure);
 /// The plunger area pi d^2 / 4 [m2].
 double plungerArea(const HydraulicTensionerDesc& t);
 /// Vogel's law: the oil's dynamic viscosity [Pa s] at temperature [K] (within the law's range).

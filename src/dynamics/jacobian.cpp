@@ -20,6 +20,7 @@ constexpr double kDxPosition = 1e-9;   // m
 constexpr double kDxAngle = 1e-8;      // rad
 constexpr double kDxVelocity = 1e-6;   // m/s
 constexpr double kDxRate = 1e-5;       // rad/s
+constexpr double kDxPressure = 1.0;    // Pa (of some 1e5 Pa in the chamber)
 
 double perturbation(const Model& m, int state) {
   if (state < 6 * m.chain.links) {
@@ -30,7 +31,16 @@ double perturbation(const Model& m, int state) {
     if (state == r.stateAngle) return kDxAngle;
     if (state == r.stateRate) return kDxRate;
   }
+  if (state == m.stateChamberPressure) return kDxPressure;
   return 1e-6;
+}
+
+// A hydraulic tensioner's chamber at state y (its pressure; the supply and viscosity of d).
+ChamberState chamberAt(const Model& m, const Data& d, const double* y) {
+  ChamberState c = d.chamber;
+  c.pressure = m.stateChamberPressure >= 0 ? y[m.stateChamberPressure] : 0.0;
+  c.supplyPressure = d.inputs.supplyPressure;
+  return c;
 }
 
 // Angle, its cosine and sine, and rate of rotor r in state y (the driven rotor's rate is the
@@ -70,6 +80,14 @@ JacobianAssembler::JacobianAssembler(const Model& m) {
     add(r.stateAngle, r.stateRate);
     for (int c = 0; c < 6 * n; ++c) add(r.stateRate, c);
     for (int s : rotorStates) add(r.stateRate, s);
+  }
+  // a hydraulic tensioner's chamber and its guide: the guide's torque over the pressure, the
+  // pressure's rate over the guide's angle and rate (and the pressure: the diagonal)
+  if (m.stateChamberPressure >= 0) {
+    const RotorModel& guide = m.rotors[m.tensioner.rotor];
+    add(guide.stateRate, m.stateChamberPressure);
+    add(m.stateChamberPressure, guide.stateAngle);
+    add(m.stateChamberPressure, guide.stateRate);
   }
   colPtr_.assign(ns + 1, 0);
   for (int c = 0; c < ns; ++c) {
@@ -197,17 +215,41 @@ void JacobianAssembler::differentiateRotorElements(const Model& m, const Data& d
       double tq = -g.pivotDamping * rate;
       if (g.mass > 0.0) tq += cross(rotate(g.centerOfMass - g.pivot, cs, sn), g.mass * m.gravity);
       if (m.tensioner.present && m.tensioner.rotor == g.rotor)
-        tq += tensionerForce(m.tensioner, ro.axis, cs, sn, rate).torque;
+        tq += tensionerForce(m.tensioner, ro.axis, cs, sn, rate, chamberAt(m, d, y)).torque;
       return tq;
     };
     const double base = eval();
-    for (int col : {ro.stateAngle, ro.stateRate}) {
+    const bool chamber = m.stateChamberPressure >= 0 && m.tensioner.rotor == g.rotor;
+    for (int col : {ro.stateAngle, ro.stateRate, chamber ? m.stateChamberPressure : -1}) {
+      if (col < 0) continue;
       const double h = perturbation(m, col), keep = y[col];
       y[col] = keep + h;
       const double dq = (eval() - base) / h;
       y[col] = keep;
       if (dq != 0.0) sink(m.rotorGen(g.rotor), col, dq);
     }
+  }
+}
+
+// A hydraulic tensioner's chamber: its pressure rate over the guide's angle and rate and the
+// pressure, into the chamber's row of values.
+void JacobianAssembler::differentiateChamber(const Model& m, const Data& d, double* values) {
+  if (m.stateChamberPressure < 0) return;
+  double* y = yWork_.data();
+  const int r = m.tensioner.rotor;
+  const RotorModel& ro = m.rotors[r];
+  auto rate = [&]() {
+    double angle, cs, sn, w;
+    rotorState(m, d, y, r, angle, cs, sn, w);
+    return tensionerForce(m.tensioner, ro.axis, cs, sn, w, chamberAt(m, d, y)).pressureRate;
+  };
+  const double base = rate();
+  for (int col : {ro.stateAngle, ro.stateRate, m.stateChamberPressure}) {
+    const double h = perturbation(m, col), keep = y[col];
+    y[col] = keep + h;
+    const double dp = (rate() - base) / h;
+    y[col] = keep;
+    values[find(m.stateChamberPressure, col)] += dp;
   }
 }
 
@@ -222,6 +264,7 @@ void JacobianAssembler::assemble(const Model& m, Data& d, const InputSignal& in,
   for (const auto& r : m.rotors)
     if (!r.prescribed) values[find(r.stateAngle, r.stateRate)] = 1.0;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
+  differentiateChamber(m, d, values);
   differentiate(m, d, t, [&](int gen, int col, double dq) {
     const int row = genRow(m, gen);
     if (row < 0) return;

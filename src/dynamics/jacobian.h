@@ -38,6 +38,7 @@ class JacobianAssembler {
   void differentiateJoints(const Model& m, Sink& sink);
   template <class Sink>
   void differentiateContacts(const Model& m, const Data& d, Sink& sink);
+  void differentiateChamber(const Model& m, const Data& d, double* values);
   template <class Sink>
   void differentiateRotorElements(const Model& m, const Data& d, Sink& sink);
   int find(int64_t row, int64_t col) const;

@@ -54,6 +54,7 @@ void MoreauJean::step(double h) {
   activeConstraints(h, tm);
   const double contactWork = applyImpulses(h);
   accountEnergy(h, tm, contactWork);
+  sys_.advanceSmoothStates(h);  // (at the midpoint with the mean velocity: accountEnergy's evaluation)
   for (int i = 0; i < n_; ++i) q_[i] = qm_[i] + 0.5 * h * vnew_[i];
   v_.swap(vnew_);
   ++stats_.steps;

@@ -83,6 +83,21 @@ void RigidContactDrive::pack(const double* q, const double* v, double* y) const 
   }
 }
 
+void RigidContactDrive::setSmoothStates(const double* y) {
+  const int p = model_->stateChamberPressure;
+  if (p >= 0) y_[p] = y[p];  // (pack leaves it: evaluate() reads it from y_)
+}
+
+void RigidContactDrive::smoothStates(double* y) const {
+  const int p = model_->stateChamberPressure;
+  if (p >= 0) y[p] = y_[p];
+}
+
+void RigidContactDrive::advanceSmoothStates(double h) {
+  const int p = model_->stateChamberPressure;
+  if (p >= 0) y_[p] += h * d_.chamberPressureRate;
+}
+
 void RigidContactDrive::prescribed(double t, double* v, double* a) const {
   const Model& m = *model_;
   if (m.drivenRotor < 0) return;
@@ -301,6 +316,7 @@ RigidIntegrator::RigidIntegrator(std::shared_ptr<RigidContactDrive> sys, Contact
 
 void RigidIntegrator::reset(double t0, const double* y0) {
   sys_->unpack(y0, q_.data(), v_.data());
+  sys_->setSmoothStates(y0);
   const Model& m = sys_->model();
   ns_->setEnergy(y0[m.stateInputWork], y0[m.stateDissipated]);
   ns_->reset(t0, q_.data(), v_.data());
@@ -310,6 +326,7 @@ void RigidIntegrator::advance(double tout, double* y) {
   const Model& m = sys_->model();
   ns_->advance(tout);
   sys_->pack(ns_->q().data(), ns_->v().data(), y);
+  sys_->smoothStates(y);
   y[m.stateInputWork] = ns_->inputWork();
   y[m.stateDissipated] = ns_->dissipated();
 }

@@ -38,10 +38,14 @@ class RigidContactDrive : public ns::NonsmoothSystem {
   double dissipatedPower(double t, const double* q, const double* v) override;
   double inputPower(double t, const double* q, const double* v) override;
   bool healthy(double t, const double* q, const double* v, Failure& why) override;
+  void advanceSmoothStates(double h) override;
 
   /// State vector (compliant layout, y) <-> (q, v).
   void unpack(const double* y, double* q, double* v) const;
   void pack(const double* q, const double* v, double* y) const;
+  /// The smooth states beside q and v (a hydraulic tensioner's chamber pressure) from y, into y.
+  void setSmoothStates(const double* y);
+  void smoothStates(double* y) const;
   /// The contact points of the last constraints() call with the given forces (outputs).
   void contactPoints(const std::vector<ns::ContactForce>& f, std::vector<ContactPoint>& out) const;
   bool idealJoints() const { return ideal_; }

@@ -103,6 +103,10 @@ class NonsmoothSystem {
   virtual double dissipatedPower(double /*t*/, const double* /*q*/, const double* /*v*/) { return 0.0; }
   /// Power put in by prescribed motion and loads at (t, q, v) through the smooth forces.
   virtual double inputPower(double /*t*/, const double* /*q*/, const double* /*v*/) { return 0.0; }
+  /// Advances the system's first-order smooth states beside q and v (a hydraulic tensioner's
+  /// chamber) over a step h, with their rates at the last evaluation of the smooth forces (the
+  /// step's midpoint: time stepping calls it after its energy account).
+  virtual void advanceSmoothStates(double /*h*/) {}
   /// Physical sanity of a state; false with the reason on blow-up.
   virtual bool healthy(double /*t*/, const double* /*q*/, const double* /*v*/, Failure& /*why*/) { return true; }
 };

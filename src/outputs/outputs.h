@@ -18,6 +18,8 @@ struct Outputs {
   std::vector<double> rotorTorque;  // (rotors) [N m] chain (contact) torque on the rotor, output sign
   double crankTorque = 0.0;         // [N m] chain torque on the driven sprocket, + in running direction
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
+  double chamberPressure = 0.0;     // [Pa] gauge, a hydraulic tensioner's (0 for the spring-damper law)
+  HydraulicFlows tensionerFlows;    // [m3/s] its check valve's, leak's and relief valve's
   double tightSpanForce = 0.0, slackSpanForce = 0.0;  // [N]
   double linkTension = 0.0;         // [N] tensile force of the monitored link
   double linkNormalForce = 0.0;     // [N] sum of contact normal forces on the monitored link

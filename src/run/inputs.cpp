@@ -18,6 +18,7 @@ void HarmonicInputs::evaluate(double t, InputValues& v) const {
   }
   v.crankSpeed = w;
   v.crankAcceleration = a;
+  v.supplyPressure = supplyPressure_;
   for (std::size_t r = 0; r < loads_.size() && r < v.loadTorque.size(); ++r) v.loadTorque[r] = loads_[r];
 }
 
@@ -34,7 +35,7 @@ std::vector<std::string> splitCsv(const std::string& line) {
 }
 }  // namespace
 
-TableInputs::TableInputs(const Model& m, const std::string& path) {
+TableInputs::TableInputs(const Model& m, const std::string& path) : supplyPressure_(m.tensioner.hydraulic.supplyPressure) {
   std::ifstream in(path);
   if (!in) throw std::invalid_argument(path + ": cannot be opened");
   std::string line;
@@ -97,6 +98,7 @@ void TableInputs::evaluate(double t, InputValues& v) const {
     w = dt > 0.0 ? (t - time_[k]) / dt : 1.0;
   }
   auto interp = [&](const std::vector<double>& s) { return w > 0.0 ? (1.0 - w) * s[k] + w * s[k + 1] : s[k]; };
+  v.supplyPressure = supplyPressure_;
   if (!crank_.empty()) {
     v.crankSpeed = interp(crank_);
     v.crankAcceleration = (w > 0.0 && time_[k + 1] > time_[k]) ? (crank_[k + 1] - crank_[k]) / (time_[k + 1] - time_[k]) : 0.0;

@@ -17,13 +17,15 @@ class HarmonicInputs : public InputSignal {
   struct Order {
     double order = 2.0, amplitude = 0.0, phase = 0.0;
   };
-  HarmonicInputs(const Model& m, double meanSpeed) : mean_(meanSpeed), loads_(m.rotors.size(), 0.0) {}
+  HarmonicInputs(const Model& m, double meanSpeed)
+      : mean_(meanSpeed), supplyPressure_(m.tensioner.hydraulic.supplyPressure), loads_(m.rotors.size(), 0.0) {}
   void addOrder(const Order& o) { orders_.push_back(o); }
   void setLoad(int rotor, double torque) { loads_[rotor] = torque; }
   void evaluate(double t, InputValues& v) const override;
 
  private:
   double mean_;
+  double supplyPressure_;  // [Pa] a hydraulic tensioner's oil supply: the drive's
   std::vector<Order> orders_;
   std::vector<double> loads_;
 };
@@ -38,6 +40,7 @@ class TableInputs : public InputSignal {
   double endTime() const { return time_.empty() ? 0.0 : time_.back(); }
 
  private:
+  double supplyPressure_;                     // [Pa] a hydraulic tensioner's oil supply: the drive's
   std::vector<double> time_;
   std::vector<double> crank_;                 // empty if not given
   std::vector<std::vector<double>> loads_;    // per rotor, empty if not given

@@ -109,6 +109,7 @@ void DriveSystem::toleranceScales(double* scale) const {
   }
   scale[m.stateInputWork] = 1.0;
   scale[m.stateDissipated] = 1.0;
+  if (m.stateChamberPressure >= 0) scale[m.stateChamberPressure] = 1e5;  // Pa (some bar in the chamber)
 }
 
 bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
@@ -194,6 +195,9 @@ std::vector<ChoiceProblem> combinationProblems(const Model& m, const RunChoices&
   if (c.fidelity == Fidelity::Link && c.contacts == ContactMethod::Compliant && c.joints == JointModel::Ideal)
     problems.push_back({RunChoice::JointModel, "'ideal' needs a rigid-contact method (event-driven or "
                         "time-stepping); with compliant contacts use journal-bearing joints"});
+  if (c.contacts == ContactMethod::EventDriven && m.tensioner.hydraulicChamber())
+    problems.push_back({RunChoice::ContactMethod, "'event-driven' does not integrate a hydraulic tensioner's chamber; "
+                        "use time-stepping or compliant, or the drive's tensioner.model spring-damper"});
   if (c.rigidPins && m.pulleys.empty())
     problems.push_back({RunChoice::RigidPins, "are a chain CVT's option; this drive has no pulleys"});
   return problems;

@@ -36,6 +36,7 @@ void measureSeatingSlack(SpanModel& sm) {
   // the link model's static guide angle at rest without loads
   InputValues rest;
   rest.loadTorque.assign(m.rotors.size(), 0.0);
+  rest.supplyPressure = m.tensioner.hydraulic.supplyPressure;
   PreloadReport linkReport;
   const std::vector<double> yLink = initialState(m, rest, PreloadOptions{}, linkReport);
   const double target = yLink[m.rotors[rotor].stateAngle];

@@ -11,6 +11,7 @@ namespace chaindrive::span {
 SpanData::SpanData(const SpanModel& m) {
   const std::size_t nr = m.links->rotors.size();
   inputs.loadTorque.assign(nr, 0.0);
+  chamber.viscosity = tensionerOilViscosity(m.links->tensioner);
   rotorAngle.assign(nr, 0.0);
   rotorRate.assign(nr, 0.0);
   rotorCos.assign(nr, 1.0);
@@ -119,11 +120,14 @@ void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, 
   for (std::size_t i = 0; i < m.spans.size(); ++i) evaluateSpan(m, d, static_cast<int>(i));
   d.rotorGen = d.chainTorque;  // same size: no allocation
   TensionerResult t0;
-  evaluateRotorForces(*m.links, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(),
+  d.chamber.pressure = m.stateChamberPressure >= 0 ? y[m.stateChamberPressure] : 0.0;
+  evaluateRotorForces(*m.links, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.chamber,
                       d.rotorGen.data(), t0, d.powerInput, d.powerDissipated);
   d.tensionerForce = t0.force;
   d.tensionerStroke = t0.stroke;
   d.tensionerRate = t0.rate;
+  d.chamberPressureRate = t0.pressureRate;
+  d.tensionerFlows = t0.flows;
 }
 
 void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y, double* ydot) {
@@ -135,6 +139,7 @@ void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double 
   }
   ydot[m.stateInputWork] = d.powerInput;
   ydot[m.stateDissipated] = d.powerDissipated;
+  if (m.stateChamberPressure >= 0) ydot[m.stateChamberPressure] = d.chamberPressureRate;
 }
 
 EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {
@@ -146,7 +151,9 @@ EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {
     e.elastic += 0.5 * m.spans[i].stiffness * d.spans[i].stretch * d.spans[i].stretch;
   if (lm.tensioner.present) {
     const int r = lm.tensioner.rotor;
-    e.elastic += tensionerForce(lm.tensioner, lm.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r]).energy;
+    ChamberState oil = d.chamber;
+    oil.supplyPressure = d.inputs.supplyPressure;
+    e.elastic += tensionerForce(lm.tensioner, lm.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r], oil).energy;
   }
   e.inputWork = y[m.stateInputWork];
   e.dissipated = y[m.stateDissipated];

@@ -33,6 +33,9 @@ struct SpanData {
   std::vector<double> rotorGen;        // (rotors) all torques, math sense
   std::vector<SpanState> spans;
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
+  ChamberState chamber;               // a hydraulic tensioner's (as the link model's Data)
+  double chamberPressureRate = 0.0;   // [Pa/s]
+  HydraulicFlows tensionerFlows;      // [m3/s]
   double powerInput = 0.0, powerDissipated = 0.0;
   long long rhsEvaluations = 0;
 };

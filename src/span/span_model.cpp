@@ -253,6 +253,7 @@ void layOutState(const Model& m, SpanModel& sm) {
   }
   sm.stateInputWork = idx++;
   sm.stateDissipated = idx++;
+  sm.stateChamberPressure = m.tensioner.hydraulicChamber() ? idx++ : -1;
   sm.nStates = idx;
 }
 

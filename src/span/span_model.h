@@ -99,6 +99,7 @@ struct SpanModel {
   int nStates = 0;
   std::vector<int> stateAngle, stateRate;  // (rotors); rate -1 when prescribed
   int stateInputWork = -1, stateDissipated = -1;
+  int stateChamberPressure = -1;  // a hydraulic tensioner's chamber (-1: none)
 };
 
 /// Assembles the span model of an assembled link model (which must outlive it), with the seating

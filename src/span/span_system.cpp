@@ -59,6 +59,7 @@ void SpanSystem::toleranceScales(double* scale) const {
   }
   scale[model_.stateInputWork] = 1.0;
   scale[model_.stateDissipated] = 1.0;
+  if (model_.stateChamberPressure >= 0) scale[model_.stateChamberPressure] = 1e5;  // Pa
 }
 
 bool SpanSystem::healthy(double t, const double* y, Failure& why) noexcept {
@@ -96,6 +97,8 @@ std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
     y[m.stateAngle[r]] = lm.rotors[r].initialAngle;
     if (m.stateRate[r] >= 0) y[m.stateRate[r]] = rates[r];
   }
+  if (m.stateChamberPressure >= 0)
+    y[m.stateChamberPressure] = chamberRestPressure(lm.tensioner.hydraulic, lm.tensioner.hydraulic.supplyPressure);
   return y;
 }
 
@@ -149,6 +152,8 @@ std::vector<double> spanInitialState(const SpanModel& m, const InputValues& inpu
                                      PreloadReport& report) {
   const std::clock_t t0 = std::clock();
   std::vector<double> y = nominalSpanState(m, inputs.crankSpeed);
+  if (m.stateChamberPressure >= 0)  // the chamber at rest, as the link model's (statics/preload.cpp)
+    y[m.stateChamberPressure] = chamberRestPressure(m.links->tensioner.hydraulic, inputs.supplyPressure);
   report = PreloadReport{};
   if (!opt.enabled) {
     report.converged = true;

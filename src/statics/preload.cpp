@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "dynamics/dynamics.h"
+#include "dynamics/hydraulic_tensioner.h"
 #include "dynamics/contact_compliant.h"
 #include "dynamics/jacobian.h"
 
@@ -353,6 +354,8 @@ std::vector<double> nominalState(const Model& m, const std::vector<double>& rate
     y[ro.stateAngle] = ro.initialAngle;
     if (ro.stateRate >= 0) y[ro.stateRate] = rates[r];
   }
+  if (m.stateChamberPressure >= 0)
+    y[m.stateChamberPressure] = chamberRestPressure(m.tensioner.hydraulic, m.tensioner.hydraulic.supplyPressure);
   return y;
 }
 
@@ -362,6 +365,9 @@ std::vector<double> initialState(const Model& m, const InputValues& inputs, cons
                                  PreloadReport& report) {
   const double t0 = cpuNow();
   std::vector<double> y = nominalState(m, inputs.crankSpeed);
+  // a hydraulic tensioner's chamber at rest: filled to the supply's pressure less the check
+  // valve's cracking pressure (the valve just closed); the solve holds it
+  if (m.stateChamberPressure >= 0) y[m.stateChamberPressure] = chamberRestPressure(m.tensioner.hydraulic, inputs.supplyPressure);
   report = PreloadReport{};
   if (!opt.enabled) {
     report.converged = true;
