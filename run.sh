@@ -15,7 +15,9 @@
 # ./run.sh test packages the FMUs too and runs them on both platforms (the Windows binary under
 # wine) and from their sources.
 #
-# Installing Debian packages needs root (or sudo). Environment: CHAINDRIVE_BUILD (build
+# Each command sets up only what changed since the last set-up (stamps of pyproject.toml and of
+# the build's sources; see setup): a second ./run.sh main --help answers at once. ./run.sh test
+# always builds. Installing Debian packages needs root (or sudo). Environment: CHAINDRIVE_BUILD (build
 # directory, default ./build), CHAINDRIVE_SANITIZE_BUILD (the sanitizer build, default
 # ./build-sanitize), CHAINDRIVE_SANITIZE_STAGE (0 skips the sanitizer stage; default 1),
 # CHAINDRIVE_VENV (default ./.venv), CHAINDRIVE_RESULTS (default ./results).
@@ -46,20 +48,72 @@ install_system_packages() {
   fi
 }
 
-# $1: the package's optional dependencies to install (pyproject.toml)
+# The set-up is skipped when nothing it depends on changed since it last succeeded (pip and cmake
+# take some 7 s even with nothing to do): a stamp in the virtual environment holds the hash of
+# pyproject.toml and the optional dependencies installed, one in the build directory the hash of
+# what the build is made from (the CMake files, the sources, the model descriptions, the C++ tests)
+# and of the environment it was configured with.
+PIP_STAMP="$VENV/.chaindrive-pip-stamp"
+BUILD_STAMP="$CHAINDRIVE_BUILD/.chaindrive-build-stamp"
+BUILD_INPUTS=(CMakeLists.txt cmake src fmu modelDescription tests/cpp tests/fuzz)
+
+pyproject_hash() { sha256sum < pyproject.toml | cut -d' ' -f1; }
+
+build_inputs_hash() {
+  { echo "$VENV $CHAINDRIVE_BUILD"
+    find "${BUILD_INPUTS[@]}" -type f -print0 | sort -z | xargs -0 sha256sum
+  } | sha256sum | cut -d' ' -f1
+}
+
+# $1: optional dependencies (comma list); true if pyproject.toml is unchanged and they are installed
+python_ready() {
+  [ -x "$VENV/bin/python" ] && [ -f "$PIP_STAMP" ] || return 1
+  local hash="" installed="" extra
+  { read -r hash; read -r installed; } < "$PIP_STAMP" || true
+  [ "$hash" = "$(pyproject_hash)" ] || return 1
+  for extra in ${1//,/ }; do
+    [[ ",$installed," == *",$extra,"* ]] || return 1
+  done
+}
+
+build_ready() {
+  [ -f "$BUILD_STAMP" ] && [ -f "$CHAINDRIVE_BUILD/ChainDrive.fmu" ] && [ "$(cat "$BUILD_STAMP")" = "$(build_inputs_hash)" ]
+}
+
+# $1: the package's optional dependencies to install (pyproject.toml), besides those installed before
 setup_python() {
+  python_ready "$1" && return 0
+  local first="" extras="$1" installed=""
   if [ ! -x "$VENV/bin/python" ]; then
     echo "== creating the Python environment $VENV"
     python3 -m venv "$VENV"
+    first=1
   fi
+  # the extras installed before stay: a later call that asks for fewer finds them in the stamp
+  [ -f "$PIP_STAMP" ] && installed="$(sed -n 2p "$PIP_STAMP")"
+  [ -n "$installed" ] && extras="$(echo "$installed,$1" | tr ',' '\n' | sort -u | paste -sd, -)"
+  local hash
+  hash="$(pyproject_hash)"
   # the harness as a package (pyproject.toml), editable: harness/ is used in place
-  "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[$1]"
+  if [ -n "$first" ]; then
+    echo "== installing the Python packages of pyproject.toml (numpy, scipy, matplotlib, fmpy, dask, ...; extras" \
+         "[$extras]) into $VENV: the first time takes several minutes, pip shows its progress"
+    "$VENV/bin/python" -m pip install --disable-pip-version-check -e ".[$extras]"
+  else
+    echo "== updating the Python packages of pyproject.toml [$extras] in $VENV"
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -e ".[$extras]"
+  fi
+  printf '%s\n%s\n' "$hash" "$extras" > "$PIP_STAMP"
 }
 
 build() {
-  echo "== building into $CHAINDRIVE_BUILD"
+  local hash first=""
+  hash="$(build_inputs_hash)"  # (before the build: a source changed meanwhile is built next time)
+  [ -f "$CHAINDRIVE_BUILD/build.ninja" ] || first=" (the first build takes about 10 minutes on 2 cores)"
+  echo "== building into $CHAINDRIVE_BUILD$first"
   cmake -S . -B "$CHAINDRIVE_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$VENV/bin/python" >/dev/null
   cmake --build "$CHAINDRIVE_BUILD" -j "$(nproc)"
+  echo "$hash" > "$BUILD_STAMP"
 }
 
 # The sanitizer stage: a second build with -DCHAINDRIVE_SANITIZE=ON (AddressSanitizer with the
@@ -89,10 +143,13 @@ sanitizer_stage() {
   sed -n '/^fmi_call_fuzz: [0-9]* sequences, seeds/,/^  failing sequences/p' "$SANITIZE_BUILD/Testing/Temporary/LastTest.log"
 }
 
+# Debian packages, the Python environment and the build, each when needed (nothing when the
+# stamps say that nothing changed)
 setup() {
+  python_ready test && build_ready && return 0
   install_system_packages
   setup_python test
-  build
+  build_ready || build
 }
 
 case "${1:-}" in
@@ -108,15 +165,14 @@ case "${1:-}" in
     ;;
   package)
     shift
-    install_system_packages
-    setup_python test,package
+    python_ready test,package || { install_system_packages; setup_python test,package; }
     "$VENV/bin/python" -m harness package "$@"
     ;;
   test)
     shift
     install_system_packages "${TEST_APT_PACKAGES[@]}"
     setup_python test,package
-    build
+    build  # (always: ctest needs the build of the sources as they are; cheap when nothing changed)
     echo "== C++ tests"
     ctest --test-dir "$CHAINDRIVE_BUILD" --output-on-failure -j 2
     echo "== the FMUs for download (dist/)"

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -326,6 +327,33 @@ class SimulationAdapter {
               "no resources folder with %s (fmuResourceLocation '%s'); using the default %s built into the binary",
               resource.c_str(), resourceDir.c_str(), what);
     return builtIn();
+  }
+
+  /// A number as %g writes it (1e-10 reads as 1e-10, not 0.000000), its exponent without
+  /// leading zeros (1e-9, not 1e-09), then the unit ("" for a pure number).
+  static std::string quantity(double v, const char* unit = "") {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    std::string s = text;
+    const std::size_t e = s.find('e');
+    if (e != std::string::npos) {
+      const std::size_t digits = e + 2;  // after the exponent's sign
+      while (s.size() > digits + 1 && s[digits] == '0') s.erase(digits, 1);
+    }
+    return *unit ? s + " " + unit : s;
+  }
+
+  /// "NAME = VALUE UNIT is outside [LO UNIT, HI UNIT]", the message of a parameter or input out of
+  /// its range (quantity()).
+  static std::string outsideRange(const char* name, double value, double lo, double hi, const char* unit = "") {
+    return std::string(name) + " = " + quantity(value, unit) + " is outside [" + quantity(lo, unit) + ", " +
+           quantity(hi, unit) + "]";
+  }
+
+  /// A problem (outsideRange) unless lo <= value <= hi; a NaN is outside every range.
+  static void checkRange(std::vector<std::string>& problems, const char* name, double value, double lo, double hi,
+                         const char* unit = "") {
+    if (!(value >= lo && value <= hi)) problems.push_back(outsideRange(name, value, lo, hi, unit));
   }
 
   /// A choice parameter's name parsed once (choice.h); an unknown name is a problem naming the

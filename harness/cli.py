@@ -20,10 +20,17 @@ with parser.error and returns what run takes: the args completed, or a configura
 them) and runs (run(args), returning the exit status or None); args.argv holds the command's own
 arguments, for the command line that reports record. A module's DESCRIPTION, when it has one, is
 its help's description, else its docstring. Only the module of the command given is imported.
+
+A user's mistake (harness/errors.py: UserError, and the misuse a parser reports) ends the command
+with one line on stderr, `error: ...`, and exit status 2; --debug, before or after the command,
+shows the traceback too.
 """
 import argparse
 import importlib
 import sys
+import traceback
+
+from .errors import UserError
 
 PROG = "python -m harness"
 
@@ -50,12 +57,24 @@ COMMANDS = {
 }
 
 
+DEBUG = "--debug"  # the global flag: the traceback of an error too, wherever it stands in the arguments
+
+
+class Parser(argparse.ArgumentParser):
+    """A parser whose misuse is a UserError: one line naming the problem and where the options are
+    shown (argparse's own prints the whole usage)."""
+
+    def error(self, message):
+        raise UserError(f"{message} ({self.prog} --help shows the options)")
+
+
 def parser(command=None):
     """The parser with every subcommand; the options of `command` only (its module imported),
     the others with their one line of help. Returns (parser, {name: subparser})."""
-    ap = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0],
-                                 epilog=f"{PROG} COMMAND --help shows the options of a command")
-    sub = ap.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    ap = Parser(prog=PROG, description=__doc__.split("\n\n")[0],
+                epilog=f"{PROG} COMMAND --help shows the options of a command")
+    ap.add_argument(DEBUG, action="store_true", help="on an error, show the traceback too (before or after COMMAND)")
+    sub = ap.add_subparsers(dest="command", metavar="COMMAND", required=True, parser_class=Parser)
     subparsers = {}
     for name, (module_name, help_line) in COMMANDS.items():
         if name == command:
@@ -71,11 +90,28 @@ def parser(command=None):
 
 
 def main(argv=None):
-    """Runs the command of argv (default: the process's arguments); returns its exit status."""
+    """Runs the command of argv (default: the process's arguments); returns its exit status. A
+    user's mistake is reported in one line on stderr and ends it with SystemExit(2)."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    debug = DEBUG in argv
+    argv = [a for a in argv if a != DEBUG]
+    try:
+        return run_command(argv)
+    except UserError as e:
+        if debug:
+            traceback.print_exc()
+        print(f"error: {e}", file=sys.stderr)
+        raise SystemExit(2) from None
+
+
+def run_command(argv):
+    """Parses, checks and runs the command of argv; its exit status."""
     command = argv[0] if argv and argv[0] in COMMANDS else None
     ap, subparsers = parser(command)
-    args = ap.parse_args(argv)
+    # an option the command does not know is the command's misuse, reported by its own parser
+    args, unknown = ap.parse_known_args(argv)
+    if unknown:
+        subparsers[command].error(f"unrecognized arguments: {' '.join(unknown)}")
     args.argv = argv[1:]
     module = args.module
     check = getattr(module, "check", None)

@@ -26,7 +26,6 @@ cycle-to-cycle standard deviations, a wide but finite statement.
 import math
 
 import numpy as np
-from scipy import stats as scistats
 
 ENGINE_CYCLE = 4.0 * math.pi  # [rad] crankshaft angle of one engine cycle
 ORDERS = (2, 4, 6, 8)         # the engine orders of a four-cylinder engine that matter
@@ -158,6 +157,7 @@ def interval(values, confidence=0.95):
     r1 = lag1_autocorrelation(x)
     n_eff = n * (1.0 - r1) / (1.0 + r1) if r1 > 0 else float(n)
     n_eff = max(n_eff, 2.0)  # see the module docstring: no fewer than two effective cycles
+    from scipy import stats as scistats  # (here: scipy.stats takes half a second to import)
     t = float(scistats.t.ppf(0.5 + 0.5 * confidence, n_eff - 1.0))
     return mean, t * float(np.std(x, ddof=1)) / math.sqrt(n_eff), n_eff
 

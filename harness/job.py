@@ -26,14 +26,13 @@ Two couplings:
   open              the tables turned into time series at the mean speed and passed to
                     fmpy.simulate_fmu as input.
 
-    python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in S]
+    python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in CYCLES]
                           [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
                           [--solver-step S] [--newmark-gamma G] [--drive FILE] [--out results]
 
 Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
 cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.
 """
-import contextlib
 import dataclasses
 import json
 import math
@@ -148,8 +147,7 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None):
     step = config.step
     n = int(round(duration / step))
     u0 = inputs(0.0, 0.0, 0.0, 0.0)
-    with fmu_messages(s):
-        s.initialize(inputs=u0)
+    s.initialize(inputs=u0)
     names = s.outputs
     rows = [[0.0] + [s.get(names)[k] for k in names] + [u0["crankshaft.w"], np.nan, np.nan]]
     prog = Progress(duration, "closed loop") if progress else None
@@ -158,8 +156,7 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None):
         # camshafts turn at half the crankshaft speed; the tables are over crank angle
         u = inputs(k * step, math.degrees(o["crankshaft.phi"]), 2.0 * math.degrees(o["camshaftIntake.phi"]),
                    2.0 * math.degrees(o["camshaftExhaust.phi"]))
-        with fmu_messages(s):
-            s.step(step, inputs=u, t=k * step)
+        s.step(step, inputs=u, t=k * step)
         v = s.get(names)
         rows.append([(k + 1) * step] + [v[x] for x in names] + [u["crankshaft.w"], u["camshaftIntake.tau"],
                                                                u["camshaftExhaust.tau"]])
@@ -170,19 +167,6 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None):
     s.close()
     cols = ["time"] + names + ["input.crankshaft.w", "input.camshaftIntake.tau", "input.camshaftExhaust.tau"]
     return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
-
-
-@contextlib.contextmanager
-def fmu_messages(slave):
-    """A failing FMI call's exception (the same object) with the errors the FMU logged (the
-    reason: a parameter out of range, a method failure) appended to its message."""
-    try:
-        yield
-    except Exception as e:
-        errors = slave.errors()
-        if errors:
-            e.args = (f"{e} ChainDrive.fmu: {'; '.join(errors)}",)
-        raise
 
 
 def speed_at(speed, crank_deg):
@@ -227,7 +211,7 @@ def add_arguments(ap):
     ap.add_argument("--cycles", type=int, default=DEFAULT_CYCLES,
                     help=f"engine cycles (720 deg crank) counted after the run-in (default {DEFAULT_CYCLES})")
     ap.add_argument("--run-in", type=int, help=f"engine cycles discarded before the first counted one (default: "
-                    f"at least {RUN_IN_CYCLES} and at least {RUN_IN_TIME:g} s)")
+                    f"at least {RUN_IN_CYCLES} and at least {RUN_IN_TIME:g} s)", metavar="CYCLES")
     ap.add_argument("--coupling", choices=COUPLINGS, default=COUPLINGS[0])
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
     ap.add_argument("--step", type=float, default=COMMUNICATION_STEP, help="communication step [s]")
@@ -242,8 +226,14 @@ def config_of(ap, args):
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
     if args.run_in is not None and args.run_in < 0:
         ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
+    if not args.step > 0.0:
+        ap.error(f"--step {args.step:g}: the communication step must be > 0 s")
     options = {field.name: getattr(args, field.name) for field in dataclasses.fields(RunConfig)}
-    return run_config(**dict(options, out=pathlib.Path(args.out)))
+    config = run_config(**dict(options, out=pathlib.Path(args.out)))
+    problem = tables.speed_problem(config.rpm, config.tables)
+    if problem:
+        ap.error(problem)
+    return config
 
 
 SHOWN_CYCLES = 4  # counted cycles shown in the time histories after the run-in

@@ -5,6 +5,8 @@ ROOT is the folder above the package: the repository, with the package installed
 import os
 import pathlib
 
+from .errors import MissingBuild
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BUILD = pathlib.Path(os.environ.get("CHAINDRIVE_BUILD", ROOT / "build"))
 RESULTS = pathlib.Path(os.environ.get("CHAINDRIVE_RESULTS", ROOT / "results"))
@@ -13,5 +15,5 @@ RESULTS = pathlib.Path(os.environ.get("CHAINDRIVE_RESULTS", ROOT / "results"))
 def executable(name):
     path = BUILD / name
     if not path.exists():
-        raise FileNotFoundError(f"{path} not found; build first (./run.sh builds into {BUILD})")
+        raise MissingBuild(f"{path} not found; build first (./run.sh builds into {BUILD})")
     return str(path)

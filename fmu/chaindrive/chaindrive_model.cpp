@@ -96,22 +96,27 @@ void ChainDriveModel::parseChoices(std::vector<std::string>& problems) {
 
 // The numbers: solver tolerance and step, the tensioner overrides (negative: as in the drive).
 void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
-  if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
-    problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
-  if (!(params_.step == 0.0 || (params_.step >= 1e-9 && params_.step <= 1e-3)))
-    problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed 0 (the fidelity's "
-                       "default) or [1e-9, 1e-3] s");
-  if (!(params_.newmarkGamma >= 0.5 && params_.newmarkGamma <= 1.0))
-    problems.push_back("solver.newmarkGamma: " + std::to_string(params_.newmarkGamma) + " is out of range; allowed [0.5, 1]");
-  auto checkOverride = [&](double v, const char* name, double hi) {
+  checkRange(problems, "solver.tolerance", params_.tolerance, 1e-12, 0.1);
+  if (params_.step != 0.0 && !(params_.step >= 1e-9 && params_.step <= 1e-3))  // 0: the fidelity's own (run/defaults.h)
+    problems.push_back(outsideRange("solver.step", params_.step, 1e-9, 1e-3, "s") + " (or 0: the fidelity's own step)");
+  checkRange(problems, "solver.newmarkGamma", params_.newmarkGamma, 0.5, 1.0);
+  auto checkOverride = [&](double v, const char* name, double hi, const char* unit) {
     if (!std::isfinite(v) || v > hi)
-      problems.push_back(std::string(name) + ": " + std::to_string(v) + " is out of range; allowed a negative value (as in "
-                         "the drive description) or [0, " + std::to_string(hi) + "]");
+      problems.push_back(outsideRange(name, v, 0.0, hi, unit) + " (or negative: the drive description's)");
   };
-  checkOverride(params_.tensionerPreload, "tensioner.preload", 1e5);
-  checkOverride(params_.tensionerStiffness, "tensioner.stiffness", 1e9);
-  checkOverride(params_.tensionerDamping, "tensioner.damping", 1e7);
-  checkOverride(params_.tensionerDampingExtension, "tensioner.dampingExtension", 1e7);
+  checkOverride(params_.tensionerPreload, "tensioner.preload", 1e5, "N");
+  checkOverride(params_.tensionerStiffness, "tensioner.stiffness", 1e9, "N/m");
+  checkOverride(params_.tensionerDamping, "tensioner.damping", 1e7, "N s/m");
+  checkOverride(params_.tensionerDampingExtension, "tensioner.dampingExtension", 1e7, "N s/m");
+}
+
+// The crankshaft speed turns the drive in its running direction only: a negative speed (or one
+// far beyond any engine's) is refused when set, before it can blow the run up.
+bool ChainDriveModel::inputAcceptable(const Variable& v, double value) {
+  if (v.vr != kCrankshaftW || (value >= 0.0 && value <= kMaxCrankSpeed)) return true;
+  host_.log(fmi2Error, "logStatusError", "fmi2SetReal: %s (the crankshaft turns in the running direction only)",
+            outsideRange(v.name, value, 0.0, kMaxCrankSpeed, "rad/s").c_str());
+  return false;
 }
 
 // The tensioner parameters (negative: as in the drive); false if the drive has no tensioner.
@@ -132,7 +137,7 @@ bool ChainDriveModel::applyTensionerOverrides(DriveDescription& desc) {
 // The rotors the FMU's inputs and outputs refer to, and the monitored link's range.
 bool ChainDriveModel::assignRoles(const Model& m) {
   if (params_.linkIndex < -1 || params_.linkIndex >= m.chain.links) {
-    host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (as in the drive) or 0..%d",
+    host_.log(fmi2Error, "logStatusError", "link.index = %d is outside 0..%d (or -1: as in the drive)",
               params_.linkIndex, m.chain.links - 1);
     return false;
   }

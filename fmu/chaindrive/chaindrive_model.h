@@ -49,10 +49,13 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   bool* booleanParameter(unsigned vr) { return vr == kSolverPreload ? &params_.preload : nullptr; }
   bool readRealOutput(unsigned vr, double& value) const;
   bool readIntegerOutput(unsigned vr, int& value) const;
-  bool inputAcceptable(const Variable&, double) { return true; }  // (any finite speed and torque)
+  bool inputAcceptable(const Variable& v, double value);  // crankshaft.w in [0, kMaxCrankSpeed]; any finite torque
 
  private:
   static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0};
+  // [rad/s] the largest crankshaft speed accepted (about 28600 rpm): above chaindrive-run's
+  // 20000 rpm with its rotational vibration, far below a speed no engine turns at
+  static constexpr double kMaxCrankSpeed = 3000.0;
 
   struct Parameters {
     std::string driveFile;

@@ -61,7 +61,7 @@ bool CvtChainModel::buildModel() {
   desc.ratio = ratio;
   model_ = std::make_shared<const Model>(assembleCvt(desc));
   if (params_.linkIndex < -1 || params_.linkIndex >= model_->chain.links) {
-    host_.log(fmi2Error, "logStatusError", "link.index: %d is out of range; allowed -1 (link 0) or 0..%d",
+    host_.log(fmi2Error, "logStatusError", "link.index = %d is outside 0..%d (or -1: link 0)",
               params_.linkIndex, model_->chain.links - 1);
     return false;
   }
@@ -77,13 +77,11 @@ void CvtChainModel::resetSettings() {
 bool CvtChainModel::parametersValid() {
   std::vector<std::string> problems;
   parseChoiceParameter("solver.method", params_.method, method_, problems);
-  if (!(params_.tolerance >= 1e-12 && params_.tolerance <= 0.1))
-    problems.push_back("solver.tolerance: " + std::to_string(params_.tolerance) + " is out of range; allowed [1e-12, 0.1]");
-  if (!(params_.step >= 1e-9 && params_.step <= 1e-3))
-    problems.push_back("solver.step: " + std::to_string(params_.step) + " s is out of range; allowed [1e-9, 1e-3] s");
+  checkRange(problems, "solver.tolerance", params_.tolerance, 1e-12, 0.1);
+  checkRange(problems, "solver.step", params_.step, 1e-9, 1e-3, "s");
   if (params_.clampingForce > 1e6)
-    problems.push_back("clampingForce: " + std::to_string(params_.clampingForce) + " N is out of range; allowed a "
-                       "negative value (as in the CVT description) or [0, 1e6] N");
+    problems.push_back(outsideRange("clampingForce", params_.clampingForce, 0.0, 1e6, "N") +
+                       " (or negative: the CVT description's)");
   for (const auto& p : problems) host_.log(fmi2Error, "logStatusError", "%s", p.c_str());
   return problems.empty();
 }

@@ -29,6 +29,7 @@ import numpy as np
 
 from .. import checks as run_checks
 from .. import cycle_stats, defaults, paths
+from ..errors import tool_failure
 from . import plots
 
 DEFAULT_RPM = 2000.0        # driving-pulley speed of the cost figure (CPU s per chain revolution)
@@ -132,7 +133,7 @@ def command(config, csv):
 
 def simulate(config, quiet=False):
     """Runs chaindrive-cvt over the run-in and the counted revolutions, its outputs into config.out;
-    returns (record, its JSON). A failed run raises RuntimeError with the solver's message."""
+    returns (record, its JSON). A failed run raises UserError with the solver's message in one line."""
     csv = config.out / "cvt_outputs.csv"
     if not quiet:
         print(f"chaindrive-cvt: {config.cvt or 'default CVT'}, {config.rpm:g} rpm driving, load torque "
@@ -140,7 +141,7 @@ def simulate(config, quiet=False):
               f"revolutions, {config.method} at {config.solver_step * 1e6:g} us")
     done = subprocess.run(command(config, csv), capture_output=True, text=True)
     if done.returncode != 0:
-        raise RuntimeError(f"chaindrive-cvt failed: {done.stderr.strip()}")
+        raise tool_failure("chaindrive-cvt", done.stderr)
     result = json.loads(done.stdout)
     data = np.genfromtxt(csv, delimiter=",", names=True)
     return {name: data[name] for name in data.dtype.names}, result

@@ -95,7 +95,7 @@ def run_point(method, setting, revolutions, run_in, out, counted_from=None, **ex
     try:
         record, result = cvt_job.simulate(config, quiet=True)
     except RuntimeError as e:
-        point["failure"] = str(e).replace("chaindrive-cvt failed: chaindrive-cvt: ", "")
+        point["failure"] = str(e).removeprefix("chaindrive-cvt: ")
         return point
     first = run_in if counted_from is None else counted_from
     spans = cvt_job.revolution_spans(record["time"], result["run"]["chainRevolution"], first)

@@ -248,6 +248,26 @@ def tabulated_speeds(data_dir=None):
     return sorted(set(_available(data_dir, "camshaft_torque")) & set(_available(data_dir, "crankshaft_speed")))
 
 
+def speed_problem(rpm, data_dir=None, rpm_option="--rpm", folder_option="--tables"):
+    """Why the tables of data_dir (default DATA_DIR) cannot give the inputs at rpm, in one line
+    naming the option (rpm_option, folder_option), its value and what is allowed; None if they can
+    (both kinds of table at rpm, exactly or interpolated between tabulated speeds)."""
+    folder = pathlib.Path(data_dir) if data_dir is not None else DATA_DIR
+    if not folder.is_dir():
+        return f"{folder_option} {folder}: no such folder"
+    ranges = []
+    for stem in ("camshaft_torque", "crankshaft_speed"):
+        speeds = sorted(_available(folder, stem))
+        if not speeds:
+            return (f"{folder_option} {folder}: no {stem}_<n>rpm.csv tables there; their format: "
+                    f"harness/tables/data/README.md")
+        ranges.append((speeds[0], speeds[-1]))
+    lo, hi = max(r[0] for r in ranges), min(r[1] for r in ranges)
+    if not lo <= rpm <= hi:
+        return f"{rpm_option} {rpm:g}: outside the tabulated engine speeds [{lo:g}, {hi:g}] rpm of the tables in {folder}"
+    return None
+
+
 def camshaft_torque(rpm, data_dir=None):
     """Camshaft load-torque table for an engine speed (exact file or interpolated, see _for_speed)."""
     return _for_speed("camshaft_torque", rpm, data_dir)

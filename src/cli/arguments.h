@@ -1,6 +1,7 @@
 // What the command-line tools share: reading the command line, the drive to work on, and how a
-// problem is reported (messages on stderr prefixed with the tool's name; exit code 2 for a bad
-// command line, 1 for a failed run).
+// problem is reported (messages on stderr prefixed with the tool's name; a user's mistake, a bad
+// command line or an invalid description file, in one line "<tool>: error: ..." with exit code 2;
+// a failed run with exit code 1).
 #pragma once
 
 #include <cstdio>
@@ -28,8 +29,7 @@ class Arguments {
   /// value() as a finite number.
   double number() { return number(value()); }
   /// Text of the current option's value (or of a part of it) as a finite number; throws
-  /// std::invalid_argument ("option X: 'S' is not a number"; std::stod's own when S does not
-  /// start with a number).
+  /// std::invalid_argument ("option X: 'S' is not a number").
   double number(const std::string& text) const;
   /// value() as a choice (choice.h); throws std::invalid_argument ("option X: 'S' is unknown;
   /// allowed: ...").
@@ -49,26 +49,27 @@ class Arguments {
 /// "<tool>: <message>" on stderr.
 void printError(const char* tool, const std::string& message);
 
-/// A bad command line: the message and the usage text (usage()); exit code 2.
-template <class Usage>
-int argumentError(const char* tool, const std::string& message, Usage&& usage) {
-  printError(tool, message);
-  usage();
-  return 2;
-}
+/// A user's mistake: "<tool>: error: <message>" on stderr, one line; exit code 2.
+int userError(const char* tool, const std::string& message);
+
+/// A bad command line: userError with where the options are shown (-h, --help); exit code 2.
+int argumentError(const char* tool, const std::string& message);
+
+/// The problems of an invalid description in one line, " | " between them.
+std::string oneLine(const DescriptionError& e);
 
 /// The drive description of --drive FILE; the embedded default drive when `path` is empty.
 DriveDescription loadDrive(const std::string& path);
 
-/// Runs a tool's work and returns its exit code; an invalid drive description prints its
-/// problems, any other error "<tool>: <what>"; both give exit code 1.
+/// Runs a tool's work and returns its exit code; an invalid description (a user's mistake) is
+/// reported by userError with its problems (exit code 2), any other error as "<tool>: <what>"
+/// (exit code 1).
 template <class Work>
 int reportingErrors(const char* tool, Work&& work) {
   try {
     return work();
   } catch (const DescriptionError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 1;
+    return userError(tool, oneLine(e));
   } catch (const std::exception& e) {
     printError(tool, e.what());
     return 1;
@@ -76,8 +77,8 @@ int reportingErrors(const char* tool, Work&& work) {
 }
 
 /// The main of a tool: its command line read by parse(Arguments&), which throws std::exception
-/// for a bad argument (then the message and the usage text, exit code 2); -h/--help: the usage
-/// text, exit code 0; then work(what parse returned), its errors reported as by reportingErrors.
+/// for a bad argument (then argumentError, exit code 2); -h/--help: the usage text, exit code 0;
+/// then work(what parse returned), its errors reported as by reportingErrors.
 template <class Parse, class Work>
 int runTool(const char* tool, int argc, char** argv, void (*usage)(), Parse&& parse, Work&& work) {
   Arguments args(argc, argv);
@@ -85,7 +86,7 @@ int runTool(const char* tool, int argc, char** argv, void (*usage)(), Parse&& pa
   try {
     parsed = parse(args);
   } catch (const std::exception& e) {
-    return argumentError(tool, e.what(), usage);
+    return argumentError(tool, e.what());
   }
   if (args.help()) {
     usage();

@@ -152,13 +152,13 @@ int solve(const LcpProblem& p, const LcpArguments& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // the command line: a bad one is reported with the usage text on stderr
+  // the command line: a bad one is reported in one line on stderr
   cli::Arguments args(argc, argv);
   LcpArguments parsed;
   try {
     parsed = parseArguments(args);
   } catch (const std::exception& e) {
-    return cli::argumentError(kTool, e.what(), [] { usage(stderr); });
+    return cli::argumentError(kTool, e.what());
   }
   if (args.help()) {
     usage(stdout);
@@ -169,8 +169,7 @@ int main(int argc, char** argv) {
   try {
     problem = readProblem(parsed);
   } catch (const std::exception& e) {
-    cli::printError(kTool, e.what());
-    return 2;
+    return cli::userError(kTool, e.what());
   }
   return solve(problem, parsed);
 }

@@ -81,7 +81,7 @@ unsigned valueReferenceFor(Rng& rng, Type type) {
 
 double goodReal(Rng& rng, unsigned vr) {
   switch (vr) {
-    case kCrankshaftW: return rng.uniform(-100.0, 700.0);
+    case kCrankshaftW: return rng.uniform(0.0, 700.0);  // (negative speeds are refused)
     case kCamshaftIntakeTau:
     case kCamshaftExhaustTau: return rng.uniform(-60.0, 60.0);
     case kSolverTolerance: return rng.logUniform(1e-7, 1e-3);
@@ -99,6 +99,7 @@ double goodReal(Rng& rng, unsigned vr) {
 
 double badReal(Rng& rng, unsigned vr) {
   switch (vr) {
+    case kCrankshaftW: return rng.pick({-1.0, -1e9, 1e9, kNaN, -kInf});
     case kSolverStep: return rng.pick({0.0, -1.0, 1e-12, 0.5, 1e300, kNaN, kInf});
     case kSolverTolerance: return rng.pick({0.0, 0.5, -1e-5, 1e-13, kNaN, -kInf});
     case kSolverNewmarkGamma: return rng.pick({0.0, 0.4999, 1.0001, -0.5, kNaN, kInf});

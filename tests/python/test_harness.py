@@ -31,8 +31,10 @@ def test_invalid_drive_reports_the_field(tmp_path):
     bad.write_text('{"chain": {"pitch": -1}}')
     p = subprocess.run([paths.executable("chaindrive-run"), "--drive", str(bad), "--duration", "0.001"],
                        capture_output=True, text=True)
-    assert p.returncode == 1
-    assert "chain.pitch" in p.stderr and "out of range" in p.stderr
+    assert p.returncode == 2
+    # one line: the tool, the field, its value and range
+    assert p.stderr.count("\n") == 1 and p.stderr.startswith("chaindrive-run: error: "), p.stderr
+    assert "chain.pitch: -1 is out of range" in p.stderr
 
 
 def test_failure_is_reported_not_hidden(tmp_path):

@@ -208,6 +208,28 @@ def test_nan_input_is_an_error_and_the_process_survives():
     s.close()
 
 
+@pytest.mark.parametrize("value, text", [(-1.0, "-1 rad/s"), (-1e9, "-1e+9 rad/s"), (1e9, "1e+9 rad/s")])
+def test_crankshaft_speed_outside_its_range_is_refused_and_the_run_goes_on(value, text):
+    s = fmu.Slave("speed")
+    s.initialize(inputs=INPUTS)
+    expect_error(s, s.slave.setReal, [s.vr["crankshaft.w"]], [value],
+                 text=f"crankshaft.w = {text} is outside [0 rad/s, 3000 rad/s]")
+    assert s.get(["crankshaft.w"])["crankshaft.w"] == W2000  # the speed set before stays
+    s.step(H)
+    assert abs(s.get(["crankshaft.phi"])["crankshaft.phi"] - W2000 * H) < 1e-9
+    s.close()
+
+
+def test_refusal_is_one_line_with_the_fmus_reason():
+    s = fmu.Slave("refused")
+    with pytest.raises(fmu.Refusal) as e:  # (an FMICallException too, with its status)
+        s.initialize(inputs=dict(INPUTS, **{"crankshaft.w": -5.0}))
+    assert e.value.status == 3 and e.value.function == "fmi2SetReal"
+    assert str(e.value) == ("ChainDrive.fmu: fmi2SetReal: crankshaft.w = -5 rad/s is outside [0 rad/s, 3000 rad/s] "
+                            "(the crankshaft turns in the running direction only) (fmi2SetReal returned fmi2Error)")
+    s.slave.freeInstance()
+
+
 def test_negative_step_and_wrong_time_are_errors():
     s = fmu.Slave("step")
     s.initialize(inputs=INPUTS)
