@@ -48,6 +48,9 @@ constexpr RealOutput kRealOutputs[] = {
   {kEnergyDissipated,         [](const OutputView& s) { return s.out.energy.dissipated; }},
   {kEnergyInput,              [](const OutputView& s) { return s.out.energy.inputWork; }},
   {kChainMaxJointDeformation, [](const OutputView& s) { return s.out.maxJointDeformation; }},
+  {kTensionerChamberPressure, [](const OutputView& s) { return s.out.chamberPressure; }},
+  {kTensionerCheckValveFlow,  [](const OutputView& s) { return s.out.tensionerFlows.check; }},
+  {kTensionerLeakFlow,        [](const OutputView& s) { return s.out.tensionerFlows.leak; }},
 };
 // clang-format on
 
@@ -113,6 +116,13 @@ void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
 // The crankshaft speed turns the drive in its running direction only: a negative speed (or one
 // far beyond any engine's) is refused when set, before it can blow the run up.
 bool ChainDriveModel::inputAcceptable(const Variable& v, double value) {
+  if (v.vr == kTensionerSupplyPressure) {
+    // gauge: no absolute pressure below zero; above, far beyond any engine's oil gallery
+    if (value >= -kAtmosphere && value <= kMaxSupplyPressure) return true;
+    host_.log(fmi2Error, "logStatusError", "fmi2SetReal: %s (gauge; the absolute pressure cannot be negative)",
+              outsideRange(v.name, value, -kAtmosphere, kMaxSupplyPressure, "Pa").c_str());
+    return false;
+  }
   if (v.vr != kCrankshaftW || (value >= 0.0 && value <= kMaxCrankSpeed)) return true;
   host_.log(fmi2Error, "logStatusError", "fmi2SetReal: %s (the crankshaft turns in the running direction only)",
             outsideRange(v.name, value, 0.0, kMaxCrankSpeed, "rad/s").c_str());
@@ -131,6 +141,20 @@ bool ChainDriveModel::applyTensionerOverrides(DriveDescription& desc) {
   if (params_.tensionerStiffness >= 0) desc.tensioner.stiffness = params_.tensionerStiffness;
   if (params_.tensionerDamping >= 0) desc.tensioner.damping = params_.tensionerDamping;
   if (params_.tensionerDampingExtension >= 0) desc.tensioner.dampingExtension = params_.tensionerDampingExtension;
+  return applyOilTemperature(desc);
+}
+
+// tensioner.oilTemperature sets a hydraulic tensioner's oil temperature, within its viscosity law's range.
+bool ChainDriveModel::applyOilTemperature(DriveDescription& desc) {
+  if (desc.tensioner.kind != TensionerKind::Hydraulic) return true;
+  const OilDesc& oil = desc.tensioner.hydraulic.oil;
+  const double temperature = params_.oilTemperature;
+  if (!(temperature >= oil.temperatureMin && temperature <= oil.temperatureMax)) {
+    host_.log(fmi2Error, "logStatusError", "%s (the range of the oil's viscosity law)",
+              outsideRange("tensioner.oilTemperature", temperature, oil.temperatureMin, oil.temperatureMax, "K").c_str());
+    return false;
+  }
+  desc.tensioner.hydraulic.oilTemperature = temperature;
   return true;
 }
 
@@ -192,6 +216,7 @@ void ChainDriveModel::applyInputs() {
   v.crankSpeed = in_[kInCrankSpeed];
   if (roles_.intake >= 0) v.loadTorque[roles_.intake] = in_[kInTauIntake];
   if (roles_.exhaust >= 0) v.loadTorque[roles_.exhaust] = in_[kInTauExhaust];
+  v.supplyPressure = in_[kInSupplyPressure];
 }
 
 // ---- values by value reference ----
@@ -201,6 +226,8 @@ double* ChainDriveModel::realSetting(unsigned vr) {
     case kCrankshaftW: return &in_[kInCrankSpeed];
     case kCamshaftIntakeTau: return &in_[kInTauIntake];
     case kCamshaftExhaustTau: return &in_[kInTauExhaust];
+    case kTensionerSupplyPressure: return &in_[kInSupplyPressure];
+    case kTensionerOilTemperature: return &params_.oilTemperature;
     case kSolverTolerance: return &params_.tolerance;
     case kSolverStep: return &params_.step;
     case kSolverNewmarkGamma: return &params_.newmarkGamma;

@@ -23,7 +23,7 @@ struct RotorRoles {
 };
 
 /// The Real inputs, in the order of SimulationAdapter's input array.
-enum ChainDriveInput { kInCrankSpeed = 0, kInTauIntake = 1, kInTauExhaust = 2, kChainDriveInputs = 3 };
+enum ChainDriveInput { kInCrankSpeed = 0, kInTauIntake = 1, kInTauExhaust = 2, kInSupplyPressure = 3, kChainDriveInputs = 4 };
 
 class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInputs> {
  public:
@@ -52,10 +52,12 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   bool inputAcceptable(const Variable& v, double value);  // crankshaft.w in [0, kMaxCrankSpeed]; any finite torque
 
  private:
-  static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0};
+  static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0, 3e5};
   // [rad/s] the largest crankshaft speed accepted (about 28600 rpm): above chaindrive-run's
   // 20000 rpm with its rotational vibration, far below a speed no engine turns at
   static constexpr double kMaxCrankSpeed = 3000.0;
+  static constexpr double kAtmosphere = 1.01325e5;     // [Pa] the gauge pressures' zero
+  static constexpr double kMaxSupplyPressure = 2e7;    // [Pa] gauge: 200 bar
 
   struct Parameters {
     std::string driveFile;
@@ -71,6 +73,7 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
     bool preload = true;
     double tensionerPreload = -1.0, tensionerStiffness = -1.0, tensionerDamping = -1.0,
            tensionerDampingExtension = -1.0;
+    double oilTemperature = 363.15;  // [K] a hydraulic tensioner's oil
   };
 
   /// The choice parameters parsed (parametersValid), as SimulationOptions takes them.
@@ -85,6 +88,7 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   void parseChoices(std::vector<std::string>& problems);
   void checkRanges(std::vector<std::string>& problems) const;
   bool applyTensionerOverrides(DriveDescription& desc);
+  bool applyOilTemperature(DriveDescription& desc);
   bool assignRoles(const Model& m);
 
   SimulationOptions simulationOptions() const;

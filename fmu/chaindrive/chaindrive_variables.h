@@ -15,6 +15,7 @@ enum Vr : unsigned {
   kCrankshaftW = 1,
   kCamshaftIntakeTau = 2,
   kCamshaftExhaustTau = 3,
+  kTensionerSupplyPressure = 4,
   // outputs
   kCrankshaftPhi = 10,
   kCrankshaftTau = 11,
@@ -43,6 +44,9 @@ enum Vr : unsigned {
   kSolverTime = 34,
   kContacts = 40,
   kSolverSteps = 41,
+  kTensionerChamberPressure = 42,
+  kTensionerCheckValveFlow = 43,
+  kTensionerLeakFlow = 44,
   // parameters
   kDriveFile = 100,
   kLinkIndex = 101,
@@ -58,6 +62,7 @@ enum Vr : unsigned {
   kTensionerStiffness = 111,
   kTensionerDamping = 112,
   kTensionerDampingExtension = 113,
+  kTensionerOilTemperature = 114,
 };
 
 // clang-format off
@@ -106,6 +111,11 @@ constexpr Variable kVariables[] = {
   {"chain.jointModel",           kChainJointModel,          Type::String,  Causality::Parameter, ""},
   {"fidelity",                   kFidelity,                 Type::String,  Causality::Parameter, "link"},
   {"solver.newmarkGamma",        kSolverNewmarkGamma,       Type::Real,    Causality::Parameter, "0.5"},
+  {"tensioner.supplyPressure",   kTensionerSupplyPressure,  Type::Real,    Causality::Input,     "300000"},
+  {"tensioner.chamberPressure",  kTensionerChamberPressure, Type::Real,    Causality::Output,    ""},
+  {"tensioner.checkValveFlow",   kTensionerCheckValveFlow,  Type::Real,    Causality::Output,    ""},
+  {"tensioner.leakFlow",         kTensionerLeakFlow,        Type::Real,    Causality::Output,    ""},
+  {"tensioner.oilTemperature",   kTensionerOilTemperature,  Type::Real,    Causality::Parameter, "363.15"},
 };
 // clang-format on
 

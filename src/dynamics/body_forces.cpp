@@ -22,14 +22,14 @@ double addChamber(const TensionerModel& t, double stroke, double sDot, const Cha
   const HydraulicResult h =
       hydraulicTensioner(t.hydraulic, stroke, sDot, chamber.pressure, chamber.supplyPressure, chamber.viscosity);
   r.pressureRate = h.pressureRate;
+  r.chamberPressure = h.pressure;
   r.flows = h.flows;
   r.supplyPower = h.supplyPower;
   r.power += h.dissipatedPower;
   // the compressed oil's energy, p^2 V / (2 K) at the chamber's volume: exact for a constant bulk
   // modulus, what the energy balance over a run needs (the oil stores little beside what it passes)
   const double volume = t.hydraulic.chamberVolume + plungerArea(t.hydraulic) * stroke;
-  r.energy += chamber.pressure * chamber.pressure * volume /
-              (2.0 * effectiveBulkModulus(t.hydraulic.oil, chamber.pressure));
+  r.energy += h.pressure * h.pressure * volume / (2.0 * effectiveBulkModulus(t.hydraulic.oil, h.pressure));
   return h.force;
 }
 
@@ -78,6 +78,7 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
     d.tensionerStroke = t.stroke;
     d.tensionerRate = t.rate;
     d.chamberPressureRate = t.pressureRate;
+    d.chamberPressure = t.chamberPressure;
     d.tensionerFlows = t.flows;
   }
 }

@@ -16,7 +16,8 @@ struct TensionerResult {
   double power = 0.0;   // dissipated [W]
   double energy = 0.0;  // spring energy [J], and the compressed oil's
   double supplyPower = 0.0;    // [W] the oil supply's (hydraulic)
-  double pressureRate = 0.0;   // [Pa/s] of the chamber (hydraulic)
+  double pressureRate = 0.0;   // [Pa/s] of the chamber's state (hydraulic)
+  double chamberPressure = 0.0;  // [Pa] gauge, the chamber's (hydraulic; cavitating: the vapour's)
   HydraulicFlows flows;        // [m3/s] (hydraulic)
 };
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,

@@ -221,7 +221,8 @@ struct Data {
   // tensioner; a hydraulic one's chamber: its state and viscosity in, its rate and flows out
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   ChamberState chamber;
-  double chamberPressureRate = 0.0;   // [Pa/s]
+  double chamberPressureRate = 0.0;   // [Pa/s] of the chamber's state
+  double chamberPressure = 0.0;       // [Pa] gauge, the chamber's (the state, at least the vapour's)
   HydraulicFlows tensionerFlows;      // [m3/s]
   // power terms
   double powerInput = 0.0, powerDissipated = 0.0;

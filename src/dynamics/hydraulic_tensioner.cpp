@@ -51,7 +51,8 @@ HydraulicResult hydraulicTensioner(const HydraulicTensionerDesc& t, double strok
   double stops = 0.0;
   if (stroke < t.strokeMin) stops = t.endStopStiffness * (t.strokeMin - stroke);
   if (stroke > t.strokeMax) stops = -t.endStopStiffness * (stroke - t.strokeMax);
-  r.force = std::max(0.0, pressure * area + stops);
+  r.pressure = std::max(floor, pressure);
+  r.force = std::max(0.0, r.pressure * area + stops);
   r.supplyPower = supplyPressure * r.flows.check;
   r.dissipatedPower = (supplyPressure - pressure) * r.flows.check + pressure * (r.flows.leak + r.flows.relief);
   return r;

@@ -26,7 +26,8 @@ struct HydraulicFlows {
 
 struct HydraulicResult {
   double force = 0.0;          // [N] on the plunger from the chamber and the end stops, >= 0
-  double pressureRate = 0.0;   // [Pa/s] dp/dt
+  double pressureRate = 0.0;   // [Pa/s] dp/dt of the state p
+  double pressure = 0.0;       // [Pa] gauge, the chamber's: p, at least the floor (vapour pressure - p_atm)
   HydraulicFlows flows;
   double supplyPower = 0.0;    // [W] p_s Q_check: the power the oil supply gives
   double dissipatedPower = 0.0;  // [W] in the valves and the leak gap

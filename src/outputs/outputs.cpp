@@ -109,7 +109,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;
   out.tensionerRate = d.tensionerRate;
-  out.chamberPressure = d.chamber.pressure;
+  out.chamberPressure = d.chamberPressure;
   out.tensionerFlows = d.tensionerFlows;
   out.tightSpanForce = spanForce(m, d, m.tightSpan);
   out.slackSpanForce = spanForce(m, d, m.slackSpan);

@@ -127,6 +127,7 @@ void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, 
   d.tensionerStroke = t0.stroke;
   d.tensionerRate = t0.rate;
   d.chamberPressureRate = t0.pressureRate;
+  d.chamberPressure = t0.chamberPressure;
   d.tensionerFlows = t0.flows;
 }
 

@@ -34,7 +34,8 @@ struct SpanData {
   std::vector<SpanState> spans;
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   ChamberState chamber;               // a hydraulic tensioner's (as the link model's Data)
-  double chamberPressureRate = 0.0;   // [Pa/s]
+  double chamberPressureRate = 0.0;   // [Pa/s] of the chamber's state
+  double chamberPressure = 0.0;       // [Pa] gauge, the chamber's
   HydraulicFlows tensionerFlows;      // [m3/s]
   double powerInput = 0.0, powerDissipated = 0.0;
   long long rhsEvaluations = 0;

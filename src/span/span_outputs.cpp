@@ -53,7 +53,7 @@ void computeSpanOutputs(const SpanModel& m, SpanData& d, const InputSignal& in, 
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;
   out.tensionerRate = d.tensionerRate;
-  out.chamberPressure = d.chamber.pressure;
+  out.chamberPressure = d.chamberPressure;
   out.tensionerFlows = d.tensionerFlows;
   auto probe = [&](const SpanModel::Probe& p) { return p.present ? d.spans[p.span].partTension(p.part) : 0.0; };
   out.tightSpanForce = probe(m.tightProbe);
