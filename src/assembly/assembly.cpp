@@ -308,6 +308,8 @@ void buildTensioner(const DriveDescription& desc, Model& m, std::vector<std::str
   t.stiffness = desc.tensioner.stiffness;
   t.dampingRetract = desc.tensioner.damping;
   t.dampingExtend = desc.tensioner.dampingExtension;
+  t.kind = desc.tensioner.kind;
+  t.hydraulic = desc.tensioner.hydraulic;
   t.nominalStroke = dot(t.pad - t.housing, t.direction);
   if (t.nominalStroke <= 0.0)
     problems.push_back("tensioner.contactPoint: the pad lies behind the housing along 'direction' (stroke " +

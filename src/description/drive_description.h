@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "description/choices.h"
+#include "description/hydraulic_tensioner.h"
 #include "math/vec2.h"
 
 namespace chaindrive {
@@ -97,6 +98,8 @@ struct TensionerDesc {
   double stiffness = 0.0;     // [N/m]
   double damping = 0.0;       // [N s/m] when the plunger retracts (leak-down)
   double dampingExtension = 0.0;  // [N s/m] when the plunger extends (check valve open)
+  TensionerKind kind = TensionerKind::SpringDamper;  // the damping fields apply to spring-damper only
+  HydraulicTensionerDesc hydraulic;  // the device of kind hydraulic (its defaults otherwise)
 };
 
 struct ContactLawDesc {
