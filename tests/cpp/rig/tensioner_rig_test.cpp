@@ -221,3 +221,43 @@ TEST(TensionerRig, LoopTrendsClearanceAirTemperature) {
     EXPECT_LT(fHot, reference);
   }
 }
+
+// The stable step, for the drive's integration: fixed-verlet integrates the pressure as a
+// component without a velocity (trapezoidal, from the derivatives at the half-step velocities
+// before and after the step), so the pressure lags the plunger by half a step, h/2: the plunger
+// on its oil (stiffness k = K A^2 / V, mass m) sees a negative damping -k h/2, its oscillation
+// grows at omega^2 h / 4. A closed chamber of pure oil at 50 bar, the default plunger (30 g):
+// omega = 1.60e4 rad/s, growth 160 /s at 2.5 us. Measured from the pressure swing's peaks in the
+// first and the last 2 ms of 20 ms: within 10 % (the peaks sample the swing at the step). The
+// fixed-step Dormand-Prince (arkode-erk-fixed) at the same step keeps the amplitude (|rate| below
+// 0.01 /s).
+TEST(TensionerRig, FixedVerletGrowsThePlungerOscillationAtOmegaSquaredHOver4_10pc) {
+  RigSetup setup;
+  setup.test = RigTest::LeakDown;
+  HydraulicTensionerDesc& t = setup.tensioner;
+  t.clearance = 0.0;
+  t.reliefValve.present = false;
+  t.oil.airFraction = 0.0;
+  setup.force = 5e6 * plungerArea(t);
+  setup.initialPressure = 5.05e6;
+  const double A = plungerArea(t), omega2 = t.oil.bulkModulus * A * A / (t.chamberVolume * t.plungerMass);
+  const auto growth = [&](IntegratorMethod method, double h) {
+    IntegratorSettings s;
+    s.method = method;
+    s.fixed.step = h;
+    double first = 0.0, last = 0.0;
+    for (const RigSample& x : runRig(setup, s, 0.02, h)) {
+      if (x.time < 0.002) first = std::max(first, std::fabs(x.pressure - 5e6));
+      if (x.time > 0.018) last = std::max(last, std::fabs(x.pressure - 5e6));
+    }
+    return std::log(last / first) / 0.017;
+  };
+  for (double h : {1e-6, 2.5e-6, 5e-6}) {
+    const double verlet = growth(IntegratorMethod::FixedVerlet, h), erk = growth(IntegratorMethod::ArkodeErkFixed, h);
+    std::printf("plunger on pure oil at 50 bar, h %.3g us: fixed-verlet growth %.4g /s (omega^2 h / 4 = %.4g /s), "
+                "arkode-erk-fixed %.3g /s\n",
+                h * 1e6, verlet, omega2 * h / 4.0, erk);
+    EXPECT_NEAR(verlet / (omega2 * h / 4.0), 1.0, 0.1);
+    EXPECT_LT(std::fabs(erk), 0.01);
+  }
+}
