@@ -103,8 +103,8 @@ struct TensionerModel {
   Vec2 housing, direction, pad;  // pad: contact point on the guide at the drawn pose
   double preload = 0.0, stiffness = 0.0, dampingRetract = 0.0, dampingExtend = 0.0;
   double nominalStroke = 0.0;    // dot(pad - housing, direction) at the drawn pose
-  TensionerKind kind = TensionerKind::SpringDamper;
-  HydraulicTensionerDesc hydraulic;  // kind hydraulic: the oil chamber (dynamics/hydraulic_tensioner.h)
+  TensionerKind kind = TensionerKind::SpringDamper;  // spring-damper: the damping rates; hydraulic: the device
+  HydraulicTensionerDesc hydraulic;                  // (the preload and stiffness are its plunger spring)
   bool hydraulicChamber() const { return present && kind == TensionerKind::Hydraulic; }
 };
 

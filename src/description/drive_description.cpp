@@ -215,6 +215,14 @@ void readTensioner(Fields& top, DriveDescription& desc) {
   t.preload = f.number("preload", 0.0, 1e5, std::nullopt, "N");
   t.stiffness = f.number("stiffness", 0.0, 1e9, 0.0, "N/m");
   t.damping = f.number("damping", 0.0, 1e7, 0.0, "N s/m");
+  t.kind = f.choice<TensionerKind>("model", TensionerKind::SpringDamper);
+  if (t.kind == TensionerKind::Hydraulic) {  // (its oil damps: a damping given would be ignored)
+    for (const char* key : {"damping", "dampingExtension"})
+      if (f.has(key)) f.problem(f.at(key), "applies to the model 'spring-damper' only; the model is 'hydraulic'");
+  } else if (f.has("hydraulic")) {
+    f.problem(f.at("hydraulic"), "applies to the model 'hydraulic' only; the model is 'spring-damper'");
+  }
+  readHydraulicTensioner(f.object("hydraulic", false), t.hydraulic);
   t.dampingExtension = f.number("dampingExtension", 0.0, 1e7, t.damping, "N s/m");
   const double n = norm(t.direction);
   if (std::isfinite(n)) {

@@ -98,8 +98,8 @@ struct TensionerDesc {
   double stiffness = 0.0;     // [N/m]
   double damping = 0.0;       // [N s/m] when the plunger retracts (leak-down)
   double dampingExtension = 0.0;  // [N s/m] when the plunger extends (check valve open)
-  TensionerKind kind = TensionerKind::SpringDamper;  // hydraulic: the damping laws above give way to
-  HydraulicTensionerDesc hydraulic;                  // the oil chamber (preload and stiffness: its spring)
+  TensionerKind kind = TensionerKind::SpringDamper;  // the damping fields apply to spring-damper only
+  HydraulicTensionerDesc hydraulic;  // the device of kind hydraulic (its defaults otherwise)
 };
 
 struct ContactLawDesc {

@@ -96,5 +96,8 @@ auto parseDescriptionFile(const std::string& path, Parse parse) {
 /// The links' joint (the timing drive's and the CVT's descriptions): model, stiffness, damping,
 /// clearance.
 void readJoint(Fields jt, JointDesc& joint);
+/// The hydraulic tensioner's block (tensioner.hydraulic), every field with its range; a missing
+/// field keeps the default of HydraulicTensionerDesc.
+void readHydraulicTensioner(Fields f, HydraulicTensionerDesc& h);
 
 }  // namespace chaindrive
