@@ -44,11 +44,16 @@ G_FACE_R = 0.80
 G_MARGIN = 0.030
 G_DEFLECT = 0.0015
 G_AT = 0.50
-# tensioner: typical spring preload 10-40 N at 2-10 N/mm, oil 1-5 bar; hydraulic damping [E]
-TENS_PRELOAD = 60.0      # spring 25 N + 3 bar oil on a 12 mm plunger (34 N)
+# tensioner: hydraulic (dynamics/hydraulic_tensioner.h, its defaults: a 12 mm plunger, 20 um
+# clearance, oil at 3 bar and 90 C); its plunger spring, typically 10-40 N preload at 2-10 N/mm
+TENS_PRELOAD = 25.0
 TENS_K = 5000.0
-TENS_C = 3000.0           # plunger retracting (leak-down through the gap)
-TENS_C_EXT = 300.0        # plunger extending (check valve open)
+# the spring-damper law the drive had before (its comparison, spring_damper_variant): the preload
+# of the spring and the oil at rest (25 N + 2.9 bar on the plunger, 33 N, about 60 N) and damping
+# rates for the leak-down (retracting) and the open check valve (extending) [E]
+TENS_SD_PRELOAD = 60.0
+TENS_SD_C = 3000.0
+TENS_SD_C_EXT = 300.0
 
 
 def pitch_radius(z):
@@ -159,7 +164,7 @@ def build(cam_height):
         ],
         "tensioner": {"guide": "tensionGuide", "housing": [r6(housing[0]), r6(housing[1])],
                       "direction": [r6(direction[0]), r6(direction[1])], "contactPoint": [r6(pad[0]), r6(pad[1])],
-                      "preload": TENS_PRELOAD, "stiffness": TENS_K, "damping": TENS_C, "dampingExtension": TENS_C_EXT},
+                      "preload": TENS_PRELOAD, "stiffness": TENS_K, "model": "hydraulic"},
         "contact": {
             "frictionRegularization": 0.05,
             "rollerSprocket": {"model": "hunt-crossley", "stiffness": 2.0e8, "exponent": 1.0, "dampingFactor": 0.25,
@@ -171,6 +176,18 @@ def build(cam_height):
                         "monitoredLink": 0},
     }
     return drive
+
+
+def spring_damper_variant(drive):
+    """The drive with the spring-damper tensioner law instead of its hydraulic tensioner (the law the
+    default drive had before; for comparisons): a copy of the description dict."""
+    variant = json.loads(json.dumps(drive))
+    t = variant["tensioner"]
+    for key in ("model", "hydraulic"):
+        t.pop(key, None)
+    t.update({"preload": TENS_SD_PRELOAD, "damping": TENS_SD_C, "dampingExtension": TENS_SD_C_EXT})
+    variant["name"] = drive["name"] + ", spring-damper tensioner"
+    return variant
 
 
 def closure_angle(info, drive):

@@ -29,7 +29,11 @@ double addChamber(const TensionerModel& t, double stroke, double sDot, const Cha
   // the compressed oil's energy, p^2 V / (2 K) at the chamber's volume: exact for a constant bulk
   // modulus, what the energy balance over a run needs (the oil stores little beside what it passes)
   const double volume = t.hydraulic.chamberVolume + plungerArea(t.hydraulic) * stroke;
-  r.energy += h.pressure * h.pressure * volume / (2.0 * effectiveBulkModulus(t.hydraulic.oil, h.pressure));
+  const double oilEnergy = h.pressure * h.pressure * volume / (2.0 * effectiveBulkModulus(t.hydraulic.oil, h.pressure));
+  r.energy += oilEnergy;
+  const double beyond = std::max(t.hydraulic.strokeMin - stroke, stroke - t.hydraulic.strokeMax);
+  const double stops = beyond > 0.0 ? 0.5 * t.hydraulic.endStopStiffness * beyond * beyond : 0.0;
+  r.staticPotential = -h.pressure * plungerArea(t.hydraulic) * stroke + stops - oilEnergy;
   return h.force;
 }
 
@@ -79,6 +83,7 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
     d.tensionerRate = t.rate;
     d.chamberPressureRate = t.pressureRate;
     d.chamberPressure = t.chamberPressure;
+    d.chamberStaticPotential = t.staticPotential;
     d.tensionerFlows = t.flows;
   }
 }

@@ -18,6 +18,10 @@ struct TensionerResult {
   double supplyPower = 0.0;    // [W] the oil supply's (hydraulic)
   double pressureRate = 0.0;   // [Pa/s] of the chamber's state (hydraulic)
   double chamberPressure = 0.0;  // [Pa] gauge, the chamber's (hydraulic; cavitating: the vapour's)
+  // what the chamber adds to the potential of a static solve, where its pressure is held: the
+  // work of its force at that pressure and of the end stops (hydraulic; the compressed oil's
+  // energy, counted in `energy` for the energy balance of a run, taken out)
+  double staticPotential = 0.0;  // [J]
   HydraulicFlows flows;        // [m3/s] (hydraulic)
 };
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,

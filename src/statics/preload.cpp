@@ -224,7 +224,7 @@ double PreloadSolve::residual(const std::vector<double>& yy, Eigen::VectorXd& ou
 double PreloadSolve::potential(const std::vector<double>& yy) {
   generalizedForces(m, d, held, 0.0, yy.data());
   const EnergyTerms e = energyTerms(m, d, yy.data());
-  double p = e.elastic + e.gravity;
+  double p = e.elastic + e.gravity + d.chamberStaticPotential;  // (a hydraulic chamber at its held pressure)
   for (int g = 0; g < m.nGen; ++g) {
     const int f = free.index[g];
     if (f < 0) continue;

@@ -62,6 +62,17 @@ inline nlohmann::json& guideJson(nlohmann::json& j, const std::string& name) {
 }
 
 /// The default drive, assembled once per test program (immutable).
+/// The default drive with the spring-damper tensioner law it had before its hydraulic tensioner
+/// (harness/drive/design.py: spring_damper_variant), for the methods and checks the law serves.
+inline void useSpringDamperTensioner(nlohmann::json& j) {
+  auto& t = j["tensioner"];
+  t.erase("model");
+  t.erase("hydraulic");
+  t["preload"] = 60.0;
+  t["damping"] = 3000.0;
+  t["dampingExtension"] = 300.0;
+}
+
 inline std::shared_ptr<const Model> defaultModel() {
   static const std::shared_ptr<const Model> m = std::make_shared<const Model>(assemble(defaultDriveDescription()));
   return m;

@@ -43,9 +43,9 @@ void expectNamed(const std::vector<std::string>& p, const std::string& field, co
 
 }  // namespace
 
-TEST(HydraulicDescription, DefaultDriveStaysSpringDamper) {
+TEST(HydraulicDescription, DefaultDriveIsHydraulic) {
   const DriveDescription d = defaultDriveDescription();
-  EXPECT_EQ(d.tensioner.kind, TensionerKind::SpringDamper);
+  EXPECT_EQ(d.tensioner.kind, TensionerKind::Hydraulic);
 }
 
 TEST(HydraulicDescription, BlockParsesIntoDescriptionAndModel) {
@@ -88,10 +88,16 @@ TEST(HydraulicDescription, UnknownModelListsTheNames) {
 }
 
 TEST(HydraulicDescription, FieldsOfTheOtherModelAreErrors) {
-  auto p = problemsOf([](json& j) { j["tensioner"]["hydraulic"] = json::object(); });
+  auto p = problemsOf([](json& j) {
+    test::useSpringDamperTensioner(j);
+    j["tensioner"]["hydraulic"] = json::object();
+  });
   ASSERT_EQ(p.size(), 1u) << joined(p);
   EXPECT_EQ(p[0].rfind("tensioner.hydraulic: ", 0), 0u) << p[0];
-  p = problemsOf([](json& j) { j["tensioner"]["model"] = "hydraulic"; });  // the default drive's damping stays
+  p = problemsOf([](json& j) {  // the hydraulic default drive with the spring-damper law's damping
+    j["tensioner"]["damping"] = 3000.0;
+    j["tensioner"]["dampingExtension"] = 300.0;
+  });
   EXPECT_EQ(p.size(), 2u) << joined(p);
   for (const auto& s : p) EXPECT_NE(s.find("applies to the model 'spring-damper' only"), std::string::npos) << s;
 }

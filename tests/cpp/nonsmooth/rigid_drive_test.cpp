@@ -64,8 +64,20 @@ TEST(RigidDrive, TimeSteppingRunsDeterministically) {
 // The event-driven method meets an event storm on the drive (contacts of vibrating links open
 // and close every fraction of a microsecond): with a cap of 1e5 events per second it stops with a
 // runaway-event error naming the count and the time, instead of grinding on.
+TEST(RigidDrive, EventDrivenRefusesAHydraulicTensioner) {
+  SimulationOptions opt;
+  opt.contactMethod = named<ContactMethod>("event-driven");
+  try {
+    Simulation sim(defaultModel(), opt, constantLoads(*defaultModel(), 3000.0));
+    FAIL() << "expected the combination to be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'event-driven' does not integrate a hydraulic tensioner's chamber"),
+              std::string::npos) << e.what();
+  }
+}
+
 TEST(RigidDrive, EventDrivenReportsTheEventStorm) {
-  auto m = defaultModel();
+  auto m = std::make_shared<const Model>(assemble(test::modifiedDefault(test::useSpringDamperTensioner)));
   SimulationOptions opt;
   opt.contactMethod = named<ContactMethod>("event-driven");
   opt.integrator.adaptive.rtol = 1e-4;
