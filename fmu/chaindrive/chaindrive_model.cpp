@@ -137,6 +137,13 @@ bool ChainDriveModel::applyTensionerOverrides(DriveDescription& desc) {
     host_.log(fmi2Error, "logStatusError", "tensioner.*: the drive has no tensioner to apply the parameters to");
     return false;
   }
+  const bool damping = params_.tensionerDamping >= 0 || params_.tensionerDampingExtension >= 0;
+  if (damping && desc.tensioner.kind == TensionerKind::Hydraulic) {
+    host_.log(fmi2Error, "logStatusError", "tensioner.damping, tensioner.dampingExtension: apply to the "
+              "spring-damper law only; the drive's tensioner is hydraulic (its oil damps: tensioner.oilTemperature "
+              "and the drive description's tensioner.hydraulic)");
+    return false;
+  }
   if (params_.tensionerPreload >= 0) desc.tensioner.preload = params_.tensionerPreload;
   if (params_.tensionerStiffness >= 0) desc.tensioner.stiffness = params_.tensionerStiffness;
   if (params_.tensionerDamping >= 0) desc.tensioner.damping = params_.tensionerDamping;

@@ -111,7 +111,7 @@ void CallSequence::choosePlan() {
   } else if (r < kShareFullInit + kShareOtherMethod) {
     stats_.plan = static_cast<std::uint32_t>(Plan::OtherMethod);
     stats_.combination = static_cast<std::uint32_t>(rng_.below(methodCombinationCount()));
-    pins_ = methodAssignments(stats_.combination);
+    pins_ = methodAssignments(stats_.combination, paths_);
     stepsLeft_ = methodCombinationSteps(stats_.combination);  // the slower methods: a step or two of 10 us
     shortestStep_ = longestStep_ = 1e-5;
   } else if (r < kShareFullInit + kShareOtherMethod + kShareSpan) {

@@ -35,7 +35,8 @@ void CallSequence::setReals(bool good, bool inputsOnly) {
   std::vector<fmi2ValueReference> vrs(n);
   std::vector<fmi2Real> values(n);
   for (std::size_t i = 0; i < n; ++i) {
-    vrs[i] = inputsOnly ? rng_.pick({fmu::kCrankshaftW, fmu::kCamshaftIntakeTau, fmu::kCamshaftExhaustTau})
+    vrs[i] = inputsOnly ? rng_.pick({fmu::kCrankshaftW, fmu::kCamshaftIntakeTau, fmu::kCamshaftExhaustTau,
+                                     fmu::kTensionerSupplyPressure})
                         : valueReferenceFor(rng_, fmu::Type::Real);
     values[i] = realFor(vrs[i], good);
   }

@@ -93,6 +93,8 @@ double goodReal(Rng& rng, unsigned vr) {
     case kTensionerStiffness: return rng.chance(0.3) ? -1.0 : rng.logUniform(1e3, 1e6);
     case kTensionerDamping:
     case kTensionerDampingExtension: return rng.chance(0.3) ? -1.0 : rng.logUniform(1.0, 1e4);
+    case kTensionerSupplyPressure: return rng.uniform(0.0, 8e5);        // gauge, 0..8 bar
+    case kTensionerOilTemperature: return rng.uniform(293.15, 423.15);  // the oil law's range
     default: return rng.uniform(-1.0, 1.0);  // outputs, not real variables: the setter refuses
   }
 }
@@ -107,6 +109,8 @@ double badReal(Rng& rng, unsigned vr) {
     case kTensionerStiffness: return rng.pick({1e10, 1e300, kNaN, -kInf});
     case kTensionerDamping:
     case kTensionerDampingExtension: return rng.pick({1e8, DBL_MAX, kNaN, kInf});
+    case kTensionerSupplyPressure: return rng.pick({-2e5, 1e9, kNaN, -kInf});
+    case kTensionerOilTemperature: return rng.pick({0.0, 200.0, 500.0, kNaN, kInf});
     default: return rng.pick(kExtremeReals);
   }
 }
@@ -162,7 +166,7 @@ std::vector<Assignment> poisonAssignments(Rng& rng, const FuzzPaths& paths) {
     case 3: return {realAssignment(kSolverStep, rng.pick({0.0, -2.5e-6, 1e-12, 0.01}))};
     case 4: return {realAssignment(kSolverTolerance, rng.pick({0.0, 1.0, -1e-5}))};
     case 5: return {realAssignment(rng.pick({kTensionerPreload, kTensionerStiffness, kTensionerDamping,
-                                            kTensionerDampingExtension}), 1e300)};
+                                            kTensionerDampingExtension, kTensionerOilTemperature}), 1e300)};
     case 6: return {stringAssignment(kDriveFile, rng.pick({std::string("/nonexistent/drive.json"),
                                                           paths.notADriveFile, std::string("/tmp")}))};
     // rejected after the assembly (cheap) but before the start-state solve
@@ -187,6 +191,8 @@ struct MethodCombination {
   const char* contact;  // "": the drive's (compliant)
   const char* joints;   // "": the drive's (journal-bearing)
   int steps;            // communication steps of 10 us
+  bool springDamper = false;  // on the drive file with the spring-damper tensioner law (event-driven
+                              // does not integrate the default drive's hydraulic chamber)
 };
 
 // Event-driven integration with ideal joints runs into its event storm in the second 10 us
@@ -196,7 +202,7 @@ constexpr MethodCombination kMethodCombinations[] = {
     {"cvode-bdf-klu", "", "", 2},                         {"cvode-bdf-band", "", "", 2},
     {"fixed-newmark", "", "", 2},
     {"fixed-verlet", "time-stepping", "", 2},             {"fixed-verlet", "time-stepping", "ideal", 2},
-    {"arkode-erk", "event-driven", "journal-bearing", 2}, {"arkode-erk", "event-driven", "ideal", 1},
+    {"arkode-erk", "event-driven", "journal-bearing", 2, true}, {"arkode-erk", "event-driven", "ideal", 1, true},
 };
 
 }  // namespace
@@ -217,11 +223,13 @@ std::vector<Assignment> spanAssignments(Rng& rng) {
           stringAssignment(kChainJointModel, rng.pick({"", "journal-bearing"}))};
 }
 
-std::vector<Assignment> methodAssignments(std::size_t index) {
+std::vector<Assignment> methodAssignments(std::size_t index, const FuzzPaths& paths) {
   const MethodCombination& c = kMethodCombinations[index];
-  return {stringAssignment(kSolverMethod, c.integrator), stringAssignment(kContactMethod, c.contact),
-          stringAssignment(kChainJointModel, c.joints), stringAssignment(kFidelity, "link"),
-          booleanAssignment(kSolverPreload, false)};
+  std::vector<Assignment> pins = {stringAssignment(kSolverMethod, c.integrator), stringAssignment(kContactMethod, c.contact),
+                                  stringAssignment(kChainJointModel, c.joints), stringAssignment(kFidelity, "link"),
+                                  booleanAssignment(kSolverPreload, false)};
+  if (c.springDamper) pins.push_back(stringAssignment(kDriveFile, paths.driveFile));
+  return pins;
 }
 
 }  // namespace chaindrive::fuzz

@@ -66,6 +66,6 @@ std::string methodCombinationName(std::size_t index);
 /// Communication steps of 10 us a sequence with the combination makes (they dominate its cost).
 int methodCombinationSteps(std::size_t index);
 /// The assignments of a combination, with the start-state solve switched off.
-std::vector<Assignment> methodAssignments(std::size_t index);
+std::vector<Assignment> methodAssignments(std::size_t index, const FuzzPaths& paths);
 
 }  // namespace chaindrive::fuzz
