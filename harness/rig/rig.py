@@ -19,7 +19,7 @@ import numpy as np
 from .. import paths
 from . import plots
 
-FREQUENCIES = (20.0, 100.0, 200.0)   # [Hz] the suppliers' range, DOMAIN.md
+FREQUENCIES = (20.0, 100.0, 200.0)   # [Hz] the suppliers' rig range (20-200 Hz)
 AMPLITUDES = (0.05e-3, 0.2e-3)       # [m]
 
 

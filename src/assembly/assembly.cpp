@@ -311,6 +311,13 @@ void buildTensioner(const DriveDescription& desc, Model& m, std::vector<std::str
   t.kind = desc.tensioner.kind;
   t.hydraulic = desc.tensioner.hydraulic;
   t.nominalStroke = dot(t.pad - t.housing, t.direction);
+  if (t.kind == TensionerKind::Hydraulic && t.rotor >= 0) {
+    // the plunger rides on the guide's pad (its spring and oil push it there): its mass moves
+    // with the guide, about the pivot at the lever of the plunger's axis (at the drawn pose)
+    RotorModel& guide = m.rotors[t.rotor];
+    const double lever = cross(t.pad - guide.axis, t.direction);
+    guide.inertia += t.hydraulic.plungerMass * lever * lever;
+  }
   if (t.nominalStroke <= 0.0)
     problems.push_back("tensioner.contactPoint: the pad lies behind the housing along 'direction' (stroke " +
                        fmt(t.nominalStroke) + " m); the plunger extends from the housing towards the guide");
