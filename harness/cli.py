@@ -5,6 +5,7 @@
     python -m harness study          work-precision charts and stability map (harness/study/study.py)
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
     python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
+    python -m harness tensioner-study the hydraulic tensioner against the spring-damper law (harness/study/tensioner.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
     python -m harness bench-realtime the link model's real-time factor through the FMU (harness/bench/realtime.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
@@ -44,6 +45,8 @@ COMMANDS = {
     "chaos": ("harness.study.chaos.chaos", "divergence rate of twin runs per damping setting"),
     "fidelity": ("harness.study.fidelity", "the span model against the link model within tolerances: "
                  "the cheapest fidelity that meets them"),
+    "tensioner-study": ("harness.study.tensioner", "the hydraulic tensioner against the spring-damper law at 1000, "
+                        "3000 and 6000 rpm: every cycle statistic with its interval"),
     "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),
     "bench-realtime": ("harness.bench.realtime", "the link model's real-time factor and step-time spread through "
                        "ChainDrive.fmu, its accuracy against a reference"),

@@ -14,6 +14,13 @@ Per cycle: means and peak-to-peak values over the cycle's samples; engine-order 
 the cycle resampled at RESAMPLE points uniformly in crankshaft angle (order tracking: a cycle is
 exactly one period, so order k per crankshaft revolution is DFT bin 2 k, without leakage).
 
+The hydraulic tensioner's chamber pressure (output tensioner.chamberPressure, gauge) is a
+headline quantity in bar, its mean, peak-to-peak and minimum (the minimum: how near the chamber
+comes to drawing air, its pressure floor), when the record holds a hydraulic chamber: the output
+is there and not zero throughout. The FMU reports exactly 0 for the spring-damper law, and a
+hydraulic chamber is never at exactly 0 Pa gauge over a whole run (it rests near the supply
+pressure minus the check valve's cracking pressure and moves with every load).
+
 Confidence interval: mean +- t_(0.975, n_eff - 1) s / sqrt(n_eff) over the n per-cycle values,
 s their sample standard deviation and n_eff = n (1 - r1) / (1 + r1) when the lag-1
 autocorrelation r1 of successive cycles is positive (the effective number of independent cycles
@@ -29,6 +36,8 @@ import numpy as np
 
 ENGINE_CYCLE = 4.0 * math.pi  # [rad] crankshaft angle of one engine cycle
 ORDERS = (2, 4, 6, 8)         # the engine orders of a four-cylinder engine that matter
+CHAMBER = "tensioner.chamberPressure"  # [Pa] gauge, the hydraulic tensioner's chamber
+BAR = 1e5                     # [Pa]: the chamber pressure's statistics are in bar
 RESAMPLE = 1440               # points per cycle for the order analysis (0.5 deg)
 
 
@@ -60,6 +69,12 @@ def camshaft_timing_deg(d, cam):
     return np.degrees(2.0 * d[cam + ".phi"] - d["crankshaft.phi"])
 
 
+def has_chamber(d):
+    """Whether the record holds a hydraulic tensioner's chamber pressure: the output is there and
+    not zero throughout (the spring-damper law's value; see the module docstring)."""
+    return CHAMBER in d and bool(np.any(np.asarray(d[CHAMBER]) != 0.0))
+
+
 def level_quantities(d):
     """(key, unit, function of one cycle's sample slice -> value) of the headline levels. The keys
     name the output and the statistic; non-SI units carry their suffix."""
@@ -72,6 +87,11 @@ def level_quantities(d):
         if cam + ".phi" in d:
             timing = camshaft_timing_deg(d, cam)
             q.append((f"{cam}.timing.peakToPeak_degCA", "deg", lambda s, x=timing: np.ptp(x[s])))
+    if has_chamber(d):
+        p = np.asarray(d[CHAMBER]) / BAR
+        q += [(CHAMBER + ".mean_bar", "bar", lambda s: np.mean(p[s])),
+              (CHAMBER + ".peakToPeak_bar", "bar", lambda s: np.ptp(p[s])),
+              (CHAMBER + ".min_bar", "bar", lambda s: np.min(p[s]))]
     return q
 
 
@@ -123,12 +143,14 @@ def order_spectrum(d, spans, name, orders, scale=1.0):
     return np.array([mean for mean, _ in stats]), np.array([half for _, half in stats])
 
 
-def headline_keys(meshing_order):
-    """The keys of every headline quantity, in the order of per_cycle(): the keys of a synthetic
-    record of one engine cycle (so that they are per_cycle's own, not a copy of them)."""
+def headline_keys(meshing_order, hydraulic=False):
+    """The keys of every headline quantity, in the order of per_cycle(), of a drive whose tensioner
+    is hydraulic or not: the keys of a synthetic record of one engine cycle (so that they are
+    per_cycle's own, not a copy of them)."""
     phi = np.linspace(0.0, ENGINE_CYCLE, 9)
     record = {name: np.zeros_like(phi) for name in ("tensioner.F", "chain.Ftight", "chain.Fslack", "tensionGuide.phi",
-                                                   "camshaftIntake.phi", "camshaftExhaust.phi")}
+                                                   "camshaftIntake.phi", "camshaftExhaust.phi", CHAMBER)}
+    record[CHAMBER] += 1.0 if hydraulic else 0.0
     record["crankshaft.phi"] = phi
     return list(per_cycle(record, 0, meshing_order))
 

@@ -19,6 +19,12 @@ fmi2DoStep, not as accurate: python -m harness fidelity compares them). Both giv
 outputs, so the same cycle statistics, plots and summary; the fidelity is named in the header line
 and the plot titles. The solver defaults to each fidelity's own (harness/defaults.py).
 
+The hydraulic tensioner (the default drive's, docs/hydraulic_tensioner.md): the oil gallery's
+gauge pressure (--supply-pressure-bar, default 3) is the FMU's input tensioner.supplyPressure,
+held at every communication step; the oil temperature (--oil-temperature-c, default 90, within
+the oil law's range of the drive) is its parameter tensioner.oilTemperature. A drive whose
+tensioner is the spring-damper law ignores both (a note says so when they were given).
+
 Two couplings:
   closed (default)  the way an engine simulator couples: a master loop (fmpy FMU2Slave) looks the
                     camshaft torques up at the FMU's own camshaft angles and the crankshaft speed
@@ -29,6 +35,7 @@ Two couplings:
     python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in CYCLES]
                           [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
                           [--solver-step S] [--newmark-gamma G] [--drive FILE] [--out results]
+                          [--supply-pressure-bar 3] [--oil-temperature-c 90]
 
 Writes to --out: outputs.csv, summary.json (the cycle statistics), run.json (what ran and its
 cost: fidelity, speed, cycles, CPU seconds of the loop and of fmi2DoStep alone) and the plots.
@@ -43,7 +50,8 @@ import time
 import numpy as np
 
 from . import checks, cycle_stats, defaults, paths
-from .drive.description import drive_json, meshing_order
+from .drive.description import drive_json, is_hydraulic, meshing_order, oil_temperature_range
+from .errors import UserError
 from .fmu import fmu
 from .plots import drive_picture, plots
 from .tables import tables
@@ -64,6 +72,12 @@ REALTIME_METHOD, REALTIME_STEP = "fixed-verlet-implicit-joint-damping", 1e-4 / 2
 COUPLINGS = ("closed", "open")  # this module's master loop (the default), fmpy.simulate_fmu
 COMMUNICATION_STEP = 1e-4  # [s] the default communication step
 NEWMARK_GAMMA = 0.5  # the FMU parameter solver.newmarkGamma's default
+# the hydraulic tensioner's oil: the FMU's defaults (the input tensioner.supplyPressure and the
+# parameter tensioner.oilTemperature), an engine's oil gallery warm at part load
+SUPPLY_PRESSURE = 3e5        # [Pa] gauge
+OIL_TEMPERATURE = 363.15     # [K] (90 C)
+SUPPLY_PRESSURE_RANGE = (-101325.0, 2e7)  # [Pa] gauge: what the FMU accepts, from vacuum to 200 bar
+BAR, ZERO_CELSIUS = 1e5, 273.15           # [Pa], [K]: the options' units
 
 
 @dataclasses.dataclass(frozen=True)
@@ -84,6 +98,9 @@ class RunConfig:
     tables: str | None = None            # directory of the torque/speed tables; None: harness/tables/data
     out: pathlib.Path = paths.RESULTS    # output directory
     strict: bool = False                 # a missed check (harness/checks.py) makes the exit status 1
+    supply_pressure: float = SUPPLY_PRESSURE  # [Pa] gauge, FMU input tensioner.supplyPressure (held)
+    oil_temperature: float = OIL_TEMPERATURE  # [K] FMU parameter tensioner.oilTemperature
+    notes: tuple = ()                    # note lines on the options (given, but without effect on this drive)
 
 
 def run_config(**options):
@@ -126,16 +143,19 @@ def parameters_of(config):
          "solver.tolerance": config.rtol, "solver.newmarkGamma": config.newmark_gamma}
     if config.drive:
         p["driveFile"] = str(pathlib.Path(config.drive).resolve())
+    p["tensioner.oilTemperature"] = config.oil_temperature  # (the spring-damper law ignores it)
     return p
 
 
-def table_inputs(torque, speed):
+def table_inputs(torque, speed, supply_pressure=SUPPLY_PRESSURE):
     """The closed loop's inputs from the tables of one engine speed: a function of (time, crank
-    angle, intake and exhaust camshaft angles in crank degrees) giving the FMU's inputs."""
+    angle, intake and exhaust camshaft angles in crank degrees) giving the FMU's inputs; the oil
+    supply pressure [Pa] held constant (the gallery's pressure changes slowly against a cycle)."""
     def inputs(t, crank_deg, intake_deg, exhaust_deg):
         return {"crankshaft.w": speed_at(speed, crank_deg),
                 "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", intake_deg)),
-                "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", exhaust_deg))}
+                "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", exhaust_deg)),
+                "tensioner.supplyPressure": supply_pressure}
     return inputs
 
 
@@ -181,10 +201,12 @@ def run_open(config, duration, torque, speed):
     from fmpy import simulate_fmu
     ts = tables.time_series(config.rpm, duration, min(2e-5, config.step), torque_table=torque, speed_table=speed)
     names = ["crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau"]
-    arr = np.zeros(len(ts["time"]), dtype=[("time", float)] + [(n, float) for n in names])
+    supply = "tensioner.supplyPressure"
+    arr = np.zeros(len(ts["time"]), dtype=[("time", float)] + [(n, float) for n in names + [supply]])
     arr["time"] = ts["time"]
     for n in names:
         arr[n] = ts[n]
+    arr[supply] = config.supply_pressure
     prog = Progress(duration, "open loop")
     res = simulate_fmu(str(fmu.fmu_path()), stop_time=duration, output_interval=config.step, input=arr,
                        start_values=parameters_of(config), step_finished=lambda t, rec: prog.update(t))
@@ -217,6 +239,59 @@ def add_arguments(ap):
     ap.add_argument("--step", type=float, default=COMMUNICATION_STEP, help="communication step [s]")
     ap.add_argument("--newmark-gamma", type=float, default=NEWMARK_GAMMA,
                     help="FMU parameter solver.newmarkGamma (fixed-newmark)")
+    lo, hi = (p / BAR for p in SUPPLY_PRESSURE_RANGE)
+    ap.add_argument("--supply-pressure-bar", type=float, metavar="BAR",
+                    help=f"hydraulic tensioner: gauge pressure of the oil supply [bar], {lo:g} to {hi:g} (FMU input "
+                    f"tensioner.supplyPressure; default {SUPPLY_PRESSURE / BAR:g})")
+    ap.add_argument("--oil-temperature-c", type=float, metavar="DEGC",
+                    help=f"hydraulic tensioner: oil temperature [degC] within the drive's oil law (default "
+                    f"{OIL_TEMPERATURE - ZERO_CELSIUS:g}; FMU parameter tensioner.oilTemperature)")
+
+
+def supply_pressure_of(bar):
+    """[Pa] of --supply-pressure-bar (None: the default); UserError outside what the FMU accepts."""
+    if bar is None:
+        return SUPPLY_PRESSURE
+    lo, hi = SUPPLY_PRESSURE_RANGE
+    if not lo <= bar * BAR <= hi:
+        raise UserError(f"--supply-pressure-bar {bar:g}: outside [{lo / BAR:g}, {hi / BAR:g}] bar (gauge: from "
+                        f"vacuum to the FMU's limit)")
+    return bar * BAR
+
+
+def oil_temperature_of(celsius, drive):
+    """[K] of --oil-temperature-c (None: the default) for the drive (a dict); UserError outside its
+    oil's viscosity law."""
+    if celsius is None:
+        return OIL_TEMPERATURE
+    lo, hi = oil_temperature_range(drive)
+    if not lo <= celsius + ZERO_CELSIUS <= hi:
+        raise UserError(f"--oil-temperature-c {celsius:g}: outside the oil viscosity law's range "
+                        f"[{lo - ZERO_CELSIUS:g}, {hi - ZERO_CELSIUS:g}] degC")
+    return celsius + ZERO_CELSIUS
+
+
+def hydraulic_options(drive_file, supply_pressure_bar, oil_temperature_c):
+    """{supply_pressure [Pa], oil_temperature [K], notes} of the hydraulic tensioner's options for
+    a drive file (None: the default drive): validated, and a note when they were given for a drive
+    whose tensioner is not hydraulic (they change nothing there)."""
+    try:
+        drive = drive_json(drive_file)
+    except (OSError, ValueError) as e:
+        raise UserError(f"--drive {drive_file}: not readable as a drive description ({e})") from None
+    given = [f"{option} {value:g}" for option, value in (("--supply-pressure-bar", supply_pressure_bar),
+                                                        ("--oil-temperature-c", oil_temperature_c)) if value is not None]
+    return dict(supply_pressure=supply_pressure_of(supply_pressure_bar),
+                oil_temperature=oil_temperature_of(oil_temperature_c, drive), notes=inert_oil_notes(drive, given))
+
+
+def inert_oil_notes(drive, given):
+    """The note on the hydraulic tensioner's options given (["--supply-pressure-bar 3", ...]) for a
+    drive (a dict) whose tensioner is not hydraulic: they change nothing; () otherwise."""
+    if is_hydraulic(drive) or not given:
+        return ()
+    model = drive.get("tensioner", {}).get("model", "spring-damper")
+    return (f"{' and '.join(given)}: no effect, the drive's tensioner is not hydraulic (tensioner.model {model!r})",)
 
 
 def config_of(ap, args):
@@ -228,7 +303,8 @@ def config_of(ap, args):
         ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
     if not args.step > 0.0:
         ap.error(f"--step {args.step:g}: the communication step must be > 0 s")
-    options = {field.name: getattr(args, field.name) for field in dataclasses.fields(RunConfig)}
+    options = {field.name: getattr(args, field.name, None) for field in dataclasses.fields(RunConfig)}
+    options.update(hydraulic_options(args.drive, args.supply_pressure_bar, args.oil_temperature_c))
     config = run_config(**dict(options, out=pathlib.Path(args.out)))
     problem = tables.speed_problem(config.rpm, config.tables)
     if problem:
@@ -279,6 +355,8 @@ class SceneRun:
         per_s = None if self.step_cpu is None else self.step_cpu / self.duration
         return {"fidelity": config.fidelity, "rpm": config.rpm, "drive": config.drive, "coupling": config.coupling,
                 "method": config.method, "solverStep_s": config.solver_step, "communicationStep_s": config.step,
+                "tensionerModel": "hydraulic" if is_hydraulic(drive_json(config.drive)) else "spring-damper",
+                "supplyPressure_Pa": config.supply_pressure, "oilTemperature_K": config.oil_temperature,
                 "runInCycles": self.run_in, "cycles": config.cycles, "simulated_s": self.duration, "cpu_s": self.cpu,
                 "doStepCpu_s": self.step_cpu, "cpuPerSimulatedSecond": self.cpu / self.duration,
                 "doStepCpuPerSimulatedSecond": per_s}
@@ -301,9 +379,12 @@ def simulate(config, progress=True):
           f"{config.run_in} + {config.cycles} engine cycles ({duration * 1e3:.1f} ms), {config.coupling}-loop "
           f"coupling, communication step {config.step * 1e6:g} us, {config.method} at {config.solver_step * 1e6:g} us")
     print(f"tables: {torque.path} ({torque.provenance})")
+    if is_hydraulic(drive_json(config.drive)):
+        print(f"hydraulic tensioner: oil supply {config.supply_pressure / BAR:g} bar (gauge), "
+              f"{config.oil_temperature - ZERO_CELSIUS:g} degC")
     cpu0 = time.process_time()
     if config.coupling == "closed":
-        d, step_cpus = run_closed(config, duration, table_inputs(torque, speed), progress)
+        d, step_cpus = run_closed(config, duration, table_inputs(torque, speed, config.supply_pressure), progress)
     else:
         d, step_cpus = run_open(config, duration, torque, speed)
     return SceneRun(d, config.run_in, duration, time.process_time() - cpu0, step_cpus)
@@ -322,7 +403,8 @@ def run_checks(config, scene_run, per_cycle_spans):
     first, last = per_cycle_spans[0][0], per_cycle_spans[-1][1] - 1
     error = checks.energy_balance_error(scene_run.record, first, last)
     found = {"energyBalanceError": error, "energyBalanceLimit": checks.ENERGY_BALANCE_LIMIT}
-    return found, checks.energy_warnings(error), checks.fidelity_notes(config.fidelity, config.drive)
+    notes = list(config.notes) + checks.fidelity_notes(config.fidelity, config.drive)
+    return found, checks.energy_warnings(error), notes
 
 
 def write_summary(out, summary, cost):

@@ -49,7 +49,8 @@ OUTPUT_STEP = 5e-5          # [s]
 # the timing drive's options (harness/job.py) with their defaults: the CVT's run (the solver alone,
 # link fidelity) has no use for them, so they are refused when set
 TIMING_OPTIONS = (("--drive", "drive", None), ("--fidelity", "fidelity", "link"), ("--coupling", "coupling", "closed"),
-                  ("--tables", "tables", None))
+                  ("--tables", "tables", None), ("--supply-pressure-bar", "supply_pressure_bar", None),
+                  ("--oil-temperature-c", "oil_temperature_c", None))
 
 # per-revolution quantities: (CSV column, unit)
 QUANTITIES = {"slip": ("slip", ""), "drivenSpeed": ("drivenSpeed", "rad/s"),

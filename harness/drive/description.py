@@ -16,6 +16,24 @@ def drive_json(path=None):
         return json.load(f)
 
 
+# the oil viscosity law's range of temperatures where a drive's hydraulic tensioner gives none
+# (src/description/hydraulic_tensioner.h, OilDesc: 20-150 C)
+OIL_TEMPERATURE_RANGE = (293.15, 423.15)  # [K]
+
+
+def is_hydraulic(drive):
+    """Whether the drive's tensioner is the hydraulic device (tensioner.model "hydraulic"; the
+    spring-damper law is the schema's default)."""
+    return drive.get("tensioner", {}).get("model", "spring-damper") == "hydraulic"
+
+
+def oil_temperature_range(drive):
+    """(lowest, highest) oil temperature [K] of the drive's hydraulic tensioner: its oil law's range,
+    where the FMU accepts the parameter tensioner.oilTemperature."""
+    oil = drive.get("tensioner", {}).get("hydraulic", {}).get("oil", {})
+    return (oil.get("temperatureMin", OIL_TEMPERATURE_RANGE[0]), oil.get("temperatureMax", OIL_TEMPERATURE_RANGE[1]))
+
+
 def meshing_order(drive):
     """The crankshaft meshing order: the number of teeth of the prescribed (crankshaft) sprocket,
     in engine orders per crankshaft revolution."""

@@ -24,11 +24,14 @@ COMPRESSION_NOTE = "< 0: compression (the joint's pins pushed together)"
 
 
 def time_histories(path, d, rpm, title, t_end=None, t_counted=None):
-    """The outputs over time, up to t_end (default: all); the run-in, up to t_counted, shaded."""
+    """The outputs over time, up to t_end (default: all); the run-in, up to t_counted, shaded; a
+    hydraulic tensioner's chamber pressure in a last panel (cycle_stats.has_chamber)."""
     if t_end is not None:
         d = {k: v[d["time"] <= t_end] for k, v in d.items()}
     t = d["time"] * 1e3
-    fig, ax = plt.subplots(5, 1, figsize=(10, 11.5), sharex=True)
+    chamber = cycle_stats.has_chamber(d)
+    panels = 6 if chamber else 5
+    fig, ax = plt.subplots(panels, 1, figsize=(10, 2.3 * panels), sharex=True)
     if t_counted is not None:
         for a in ax:
             a.axvspan(t[0], t_counted * 1e3, color=RUN_IN_SHADE, lw=0, zorder=0)
@@ -51,7 +54,10 @@ def time_histories(path, d, rpm, title, t_end=None, t_counted=None):
     ax[3].legend(fontsize=7, loc="upper right")
     ax[4].plot(t, d["crankshaft.tau"], lw=0.6)
     ax[4].set_ylabel("chain torque on crank [N m]")
-    ax[4].set_xlabel("time [ms]")
+    if chamber:
+        ax[5].plot(t, d[cycle_stats.CHAMBER] / cycle_stats.BAR, lw=0.6, color="tab:purple")
+        ax[5].set_ylabel("tensioner chamber,\ngauge [bar]")
+    ax[-1].set_xlabel("time [ms]")
     for a in ax:
         a.grid(True, lw=0.3)
     fig.suptitle(title, fontsize=10)
@@ -278,7 +284,7 @@ def cycle_statistics(path, per_cycle, summary, title, keys=None):
         ax[len(column) - 1, j].set_xlabel("counted engine cycle", fontsize=8)
     fig.legend(*ax[0, 0].get_legend_handles_labels(), fontsize=8, loc="lower right")
     fig.suptitle(f"{title}: mean +- 95 % confidence half-width as in the summary", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - 0.3 / fig.get_figheight()))  # (the title above the first row's)
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return drawn

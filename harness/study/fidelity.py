@@ -19,7 +19,8 @@ Tolerances (--tolerance, repeated; harness/study/ladder.py): KEY=X% for a level 
 (tensioner.F.mean=2%), KEY=XdB for one order amplitude, orders=XdB for every order amplitude of at
 least 10 % of the largest of its signal. Without --tolerance: the acceptance set, span forces
 (tensioner.F.mean, chain.Ftight.mean, chain.Fslack.mean) within 3 %, tension-guide angle and
-camshaft timing peak-to-peak within 10 %, orders within 3 dB.
+camshaft timing peak-to-peak within 10 %, orders within 3 dB; with a hydraulic tensioner (the
+default drive's) also its chamber's mean pressure within 3 % (the plunger force's share).
 
 --link-summary FILE takes the link model's statistics from an earlier `python -m harness run --out
 DIR` (DIR/summary.json; its cost from DIR/run.json when present) instead of running the check.
@@ -42,7 +43,7 @@ import json
 import pathlib
 
 from .. import cycle_stats, job, paths, runs
-from ..drive.description import drive_json, meshing_order
+from ..drive.description import drive_json, is_hydraulic, meshing_order
 from . import ladder
 
 # the main job's cycles: the span model itself is cheap, but the Python master loop costs about
@@ -54,7 +55,8 @@ DEFAULT_LINK_CYCLES = 24   # a short check: intervals of about 2 % on the tensio
 def add_arguments(ap):
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
     ap.add_argument("--rpm", type=float, default=3000.0, help="mean engine speed [rpm], 1000-6000 (tables)")
-    forms = f"repeated: {ladder.FORMS}; default: " + " ".join(ladder.DEFAULT_TOLERANCES)
+    forms = (f"repeated: {ladder.FORMS}; default: " + " ".join(ladder.DEFAULT_TOLERANCES) + " and, for a hydraulic "
+             "tensioner, " + " ".join(ladder.HYDRAULIC_TOLERANCES))
     # argparse formats help with %
     ap.add_argument("--tolerance", action="append", metavar="SPEC", help=forms.replace("%", "%%"))
     ap.add_argument("--cycles", type=int, default=DEFAULT_SPAN_CYCLES,
@@ -86,8 +88,9 @@ def check(ap, args):
     for option, cycles in (("--cycles", args.cycles), ("--link-cycles", args.link_cycles)):
         if cycles < 2:
             ap.error(f"{option} {cycles}: at least 2 counted cycles are needed for a confidence interval")
-    keys = cycle_stats.headline_keys(meshing_order(drive_json(args.drive)))
-    specs = args.tolerance or list(ladder.DEFAULT_TOLERANCES)
+    drive = drive_json(args.drive)
+    keys = cycle_stats.headline_keys(meshing_order(drive), is_hydraulic(drive))
+    specs = args.tolerance or list(ladder.default_tolerances(is_hydraulic(drive)))
     args.tolerances = [parse_tolerance(ap, spec, keys) for spec in specs]
     args.out = args.out or str(paths.RESULTS / "fidelity")
     if args.link_summary:

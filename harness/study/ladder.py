@@ -28,6 +28,14 @@ FORMS = ("KEY=X% (a level of the summary, e.g. tensioner.F.mean=3%), KEY=XdB (on
 DEFAULT_TOLERANCES = ("tensioner.F.mean=3%", "chain.Ftight.mean=3%", "chain.Fslack.mean=3%",
                       "tensionGuide.phi.peakToPeak_deg=10%", "camshaftIntake.timing.peakToPeak_degCA=10%",
                       "camshaftExhaust.timing.peakToPeak_degCA=10%", "orders=3dB")
+# and a hydraulic tensioner's mean chamber pressure as its force (the minimum and peak-to-peak,
+# near zero or set by single impacts, are no level to hold to a relative tolerance)
+HYDRAULIC_TOLERANCES = (f"{cycle_stats.CHAMBER}.mean_bar=3%",)
+
+
+def default_tolerances(hydraulic):
+    """The acceptance set of a drive whose tensioner is hydraulic or not."""
+    return DEFAULT_TOLERANCES + (HYDRAULIC_TOLERANCES if hydraulic else ())
 
 Tolerance = collections.namedtuple("Tolerance", "key limit unit")  # limit in unit: "%" or "dB"
 

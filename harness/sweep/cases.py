@@ -29,6 +29,9 @@ SPECTRUM_STEP = 0.5         # engine orders per bin of the spectra (half orders:
 SPECTRUM_BEYOND_MESHING = 4  # the spectra reach this many orders beyond the meshing order
 FORCE_SIGNALS = ("tensioner.F", "chain.Ftight", "chain.Fslack")  # minima and maxima per speed [N]
 SPECTRUM_SIGNALS = (("tensioner.F", "N", 1.0), ("tensionGuide.phi", "deg", 180.0 / math.pi))
+# a hydraulic tensioner's chamber: its lowest and highest pressure over a point's counted cycles
+# [bar] (the summary's min_bar is the mean of each cycle's minimum)
+CHAMBER_EXTREMES = {cycle_stats.CHAMBER + ".lowest_bar": np.min, cycle_stats.CHAMBER + ".highest_bar": np.max}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -46,6 +49,8 @@ class Case:
     tables: str | None = None
     rpm_end: float | None = None
     ramp_s: float | None = None
+    supply_pressure: float | None = None  # [Pa] gauge, the hydraulic tensioner's oil; None: the main job's
+    oil_temperature: float | None = None  # [K]; None: the main job's
 
     @property
     def runup(self):
@@ -53,13 +58,19 @@ class Case:
 
     def label(self):
         speed = f"run-up {self.rpm:g}-{self.rpm_end:g} rpm in {self.ramp_s:g} s" if self.runup else f"{self.rpm:g} rpm"
-        return f"{speed}, {self.fidelity}, {self.method}"
+        oil = []  # the hydraulic tensioner's, when the case sets them
+        if self.supply_pressure is not None:
+            oil.append(f"{self.supply_pressure / job.BAR:g} bar")
+        if self.oil_temperature is not None:
+            oil.append(f"{self.oil_temperature - job.ZERO_CELSIUS:g} degC")
+        return ", ".join([speed] + oil + [self.fidelity, self.method])
 
     def config(self):
         """The main job's configuration of this case (harness/job.py): closed loop, the run-in and
         every option the case does not set at the main job's defaults."""
         return job.run_config(rpm=self.rpm, fidelity=self.fidelity, method=self.method, solver_step=self.solver_step,
-                              cycles=self.cycles, drive=self.drive, tables=self.tables)
+                              cycles=self.cycles, drive=self.drive, tables=self.tables,
+                              supply_pressure=self.supply_pressure, oil_temperature=self.oil_temperature)
 
 
 def _digest_files(paths_, h):
@@ -114,9 +125,7 @@ def _run_stationary(case):
     row.update({k: s["mean"] for k, s in summary.items()})
     row.update({k + ".ci95": s["ci95"] for k, s in summary.items()})
     counted = slice(spans[0][0], spans[-1][1])
-    for name in FORCE_SIGNALS:
-        row[name + ".min"] = float(np.min(d[name][counted]))
-        row[name + ".max"] = float(np.max(d[name][counted]))
+    row.update(extremes(d, counted))
     orders = spectrum_orders(meshing_order(drive_json(case.drive)))
     spectra = {name: np.mean(cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale), axis=0).tolist()
                for name, _, scale in SPECTRUM_SIGNALS}
@@ -125,9 +134,24 @@ def _run_stationary(case):
             "simulated_s": scene_run.duration}
 
 
+def extremes(d, samples):
+    """The forces' minima and maxima [N] over the samples (a slice) of the record, and a hydraulic
+    chamber's lowest and highest pressure [bar]."""
+    out = {}
+    for name in FORCE_SIGNALS:
+        out[name + ".min"] = float(np.min(d[name][samples]))
+        out[name + ".max"] = float(np.max(d[name][samples]))
+    if cycle_stats.has_chamber(d):
+        out.update({key: float(f(d[cycle_stats.CHAMBER][samples])) / cycle_stats.BAR
+                    for key, f in CHAMBER_EXTREMES.items()})
+    return out
+
+
 def _with_force_units(units):
-    """The units of the headline quantities and of the forces' minima and maxima."""
-    return dict(units, **{name + stat: "N" for name in FORCE_SIGNALS for stat in (".min", ".max")})
+    """The units of the headline quantities, of the forces' minima and maxima and of the chamber's
+    extremes."""
+    return dict(units, **{name + stat: "N" for name in FORCE_SIGNALS for stat in (".min", ".max")},
+                **{key: "bar" for key in CHAMBER_EXTREMES})
 
 
 def runup_inputs(case, ramp_start):
@@ -140,8 +164,9 @@ def runup_inputs(case, ramp_start):
     if not speeds:
         raise ValueError(f"run-up: no camshaft_torque_<n>rpm.csv and crankshaft_speed_<n>rpm.csv tables in "
                          f"{case.tables or tables.DATA_DIR}")
-    at_speed = {r: job.table_inputs(tables.camshaft_torque(r, case.tables), tables.crankshaft_speed(r, case.tables))
-                for r in speeds}
+    supply = case.config().supply_pressure
+    at_speed = {r: job.table_inputs(tables.camshaft_torque(r, case.tables), tables.crankshaft_speed(r, case.tables),
+                                    supply) for r in speeds}
 
     def inputs(t, crank_deg, intake_deg, exhaust_deg):
         ramp = min(max((t - ramp_start) / case.ramp_s, 0.0), 1.0)
@@ -174,9 +199,7 @@ def _run_runup(case):
     for j, (i0, i1, _) in enumerate(spans):
         row = {"rpm": float(np.mean(d["input.crankshaft.w"][i0:i1])) * 60.0 / (2.0 * math.pi), "cycles": 1}
         row.update({k: float(v[j]) for k, (_, v) in per_cycle.items()})
-        for name in FORCE_SIGNALS:
-            row[name + ".min"] = float(np.min(d[name][i0:i1]))
-            row[name + ".max"] = float(np.max(d[name][i0:i1]))
+        row.update(extremes(d, slice(i0, i1)))
         rows.append(row)
     orders = spectrum_orders(meshing_order(drive_json(case.drive)))
     spectra = {name: cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale).tolist()

@@ -5,15 +5,18 @@ with their 95 % confidence intervals) and the minimum, mean and maximum of the t
 forces over speed.
 
 Dimension `point`: one point per stationary speed or per engine cycle of a run-up, with the
-coordinate `rpm` (the point's mean engine speed); `order` for the spectra. Variables carry their
-unit (attribute `units`); failed cases are points with NaN values, their status and error."""
+coordinate `rpm` (the point's mean engine speed) and, when the sweep set them, the hydraulic
+tensioner's oil settings `supply_pressure_bar` and `oil_temperature_c` (a case that leaves one
+unset has the main job's default there); `order` for the spectra. Variables carry their unit
+(attribute `units`); failed cases are points with NaN values, their status and error. A sweep of a
+hydraulic tensioner adds the plot hydraulic_over_speed.png."""
 import json
 import math
 
 import numpy as np
 
-from .. import cycle_stats
-from .cases import FORCE_SIGNALS, SPECTRUM_SIGNALS
+from .. import cycle_stats, job
+from .cases import CHAMBER_EXTREMES, FORCE_SIGNALS, SPECTRUM_SIGNALS
 
 CUT_ORDERS = (2, 4, 6, 8)
 
@@ -48,7 +51,27 @@ def dataset(cases, results, attrs):
     data["error"] = ("point", np.array([e for _, _, e in status], dtype=object))
     coords = {"rpm": ("point", np.array([p["rpm"] for p in points], float), {"units": "rpm"}),
               "order": ("order", np.array(orders, float), {"units": "1", "long_name": "engine order per crankshaft revolution"})}
+    coords.update(oil_coordinates(cases, results))
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+# the oil settings as coordinates: (name, Case field, default, from SI to the coordinate's unit, unit)
+OIL_COORDINATES = (("supply_pressure_bar", "supply_pressure", job.SUPPLY_PRESSURE, lambda p: p / job.BAR, "bar"),
+                   ("oil_temperature_c", "oil_temperature", job.OIL_TEMPERATURE, lambda T: T - job.ZERO_CELSIUS,
+                    "degC"))
+
+
+def oil_coordinates(cases, results):
+    """The coordinates along `point` of the oil settings some case sets (each case's value on each
+    of its points; the main job's default where a case leaves it unset)."""
+    coords = {}
+    for name, field, default, convert, unit in OIL_COORDINATES:
+        if all(getattr(c, field) is None for c in cases):
+            continue
+        per_point = [convert(default if getattr(c, field) is None else getattr(c, field))
+                     for c, r in zip(cases, results) for _ in (r["rows"] if r["status"] == "ok" else [None])]
+        coords[name] = ("point", np.array(per_point, float), {"units": unit})
+    return coords
 
 
 def write_netcdf(ds, path):
@@ -78,6 +101,8 @@ def plots(ds, out, meshing, title):
     written = [_campbell(plt, ok, out, name, unit, meshing, title) for name, unit, _ in SPECTRUM_SIGNALS]
     written.append(_order_cuts(plt, ok, out, meshing, title))
     written.append(_force_ranges(plt, ok, out, title))
+    if cycle_stats.CHAMBER + ".mean_bar" in ok:
+        written.append(hydraulic_over_speed(plt, ok, out / "hydraulic_over_speed.png", title))
     return written
 
 
@@ -177,6 +202,65 @@ def _force_ranges(plt, ok, out, title):
                  "point: one engine cycle)", fontsize=10)
     fig.tight_layout()
     path = out / "forces_over_speed.png"
+    fig.savefig(path, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def oil_lines(ok):
+    """[(label, the points of one oil setting)] of the sweep: one per combination of the oil
+    coordinates it has (one line, unlabelled, without them)."""
+    names = [name for name, *_ in OIL_COORDINATES if name in ok.coords]
+    if not names:
+        return [("", ok)]
+    settings = sorted({tuple(float(ok[n].values[i]) for n in names) for i in range(ok.sizes["point"])})
+    units = {name: unit for name, _, _, _, unit in OIL_COORDINATES}
+    lines = []
+    for setting in settings:
+        at = np.logical_and.reduce([ok[n].values == v for n, v in zip(names, setting)])
+        lines.append((", ".join(f"{v:g} {units[n]}" for n, v in zip(names, setting)), ok.isel(point=at)))
+    return lines
+
+
+def _mean_with_band(ax, rpm, mean, ci, label, **style):
+    """A mean over speed with its 95 % confidence band (where the points have one); its colour."""
+    line, = ax.plot(rpm, mean, "o-", ms=3, label=label, **style)
+    if np.any(np.isfinite(ci)):
+        ax.fill_between(rpm, mean - ci, mean + ci, color=line.get_color(), alpha=0.2, lw=0)
+    return line.get_color()
+
+
+def hydraulic_over_speed(plt, ok, path, title):
+    """The hydraulic tensioner over speed, one colour per oil setting: the tensioner force's mean
+    (band: 95 % confidence interval) and maximum; the chamber pressure's mean (band), lowest and
+    highest over the counted cycles [bar]."""
+    chamber = cycle_stats.CHAMBER
+    low, high = CHAMBER_EXTREMES
+    fig, (force, pressure) = plt.subplots(2, 1, figsize=(9, 8.5), sharex=True)
+    for label, pts in oil_lines(ok):
+        pts = pts.sortby("rpm")
+        rpm = pts["rpm"].values
+
+        def ci(key):
+            return pts[key + ".ci95"].values if key + ".ci95" in pts else np.full(len(rpm), np.nan)
+        colour = _mean_with_band(force, rpm, pts["tensioner.F.mean"].values, ci("tensioner.F.mean"),
+                                 f"{label}: mean".lstrip(": "))
+        force.plot(rpm, pts["tensioner.F.max"].values, "v--", ms=3, lw=0.8, color=colour,
+                   label=f"{label}: maximum".lstrip(": "))
+        _mean_with_band(pressure, rpm, pts[chamber + ".mean_bar"].values, ci(chamber + ".mean_bar"),
+                        f"{label}: mean".lstrip(": "), color=colour)
+        pressure.plot(rpm, pts[high].values, "v--", ms=3, lw=0.8, color=colour, label=f"{label}: highest".lstrip(": "))
+        pressure.plot(rpm, pts[low].values, "^:", ms=3, lw=0.8, color=colour, label=f"{label}: lowest".lstrip(": "))
+    force.set_ylabel("tensioner force [N]")
+    pressure.set_ylabel("chamber pressure, gauge [bar]")
+    pressure.axhline(0.0, color="k", lw=0.6)
+    pressure.set_xlabel("engine speed [rpm]")
+    for ax in (force, pressure):
+        ax.grid(True, lw=0.3)
+        ax.legend(fontsize=7, ncol=3, loc="upper left")
+    fig.suptitle(f"hydraulic tensioner over speed: {title}\nmean with its 95 % confidence band; maximum, highest and "
+                 "lowest over each point's counted cycles", fontsize=10)
+    fig.tight_layout()
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
     return path

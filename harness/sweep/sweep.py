@@ -6,7 +6,9 @@ Two studies, one command:
                counted after the main job's run-in (harness/job.py), one case per speed;
   run-up       --runup FROM:TO: the run-in at FROM, then the mean speed ramped linearly to TO over
                --ramp-time seconds, one case; every engine cycle of the ramp is a point over speed.
-Both run ChainDrive.fmu in closed loop at 0.1 ms communication steps with the measured-torque
+The hydraulic tensioner's oil (the default drive's): --supply-pressure-bar and --oil-temperature-c,
+comma lists, each value combined with every speed (and with each other's: the cartesian product);
+not given, the main job's defaults (3 bar, 90 degC). Both run ChainDrive.fmu in closed loop at 0.1 ms communication steps with the measured-torque
 tables (between tabulated speeds interpolated in speed), at any --fidelity and --method.
 
 Execution: one Dask task per case on a LocalCluster of --workers single-threaded worker processes
@@ -19,18 +21,23 @@ sweep goes on.
 
     python -m harness sweep [--rpm 1000:6000:500] [--runup 1000:6000 --ramp-time 5] [--fidelity link|span]
                             [--method fixed-verlet] [--solver-step S] [--cycles 8] [--drive FILE]
-                            [--tables DIR] [--workers N | --scheduler ADDRESS] [--cache DIR] [--out DIR]
+                            [--tables DIR] [--supply-pressure-bar 1,3,5] [--oil-temperature-c 40,90,120]
+                            [--workers N | --scheduler ADDRESS] [--cache DIR] [--out DIR]
 
 Writes to --out: sweep.nc (speed sweep) and runup.nc (run-up), xarray Datasets in netCDF with
 units and the drive's parameters as attributes, and per study the plots campbell_tensioner_F.png,
-campbell_tensionGuide_phi.png, order_cuts.png and forces_over_speed.png (in sweep/ and runup/).
+campbell_tensionGuide_phi.png, order_cuts.png and forces_over_speed.png (in sweep/ and runup/), and
+with a hydraulic tensioner hydraulic_over_speed.png (tensioner force and chamber pressure over
+speed, a line per supply pressure and oil temperature). The oil settings given are coordinates
+along `point` (supply_pressure_bar, oil_temperature_c).
 """
 import dataclasses
+import itertools
 import pathlib
 import sys
 import time
 
-from .. import job, paths
+from .. import checks, cycle_stats, job, paths
 from ..drive.description import drive_json, meshing_order
 from .cases import Case, code_version
 from .execute import run_cases
@@ -63,6 +70,14 @@ def speed_range(text):
         raise ValueError(f"--runup {text}: expected FROM:TO [rpm]") from None
 
 
+def values(option, text):
+    """The numbers of a comma list; ValueError names the option and the text."""
+    try:
+        return [float(x) for x in text.split(",")]
+    except ValueError:
+        raise ValueError(f"{option} '{text}': expected a comma list of numbers") from None
+
+
 def add_arguments(ap):
     ap.add_argument("--rpm", help=f"speed sweep: FROM:TO:STEP or a comma list [rpm] (default {DEFAULT_RPM} "
                     "unless --runup is given)")
@@ -75,6 +90,12 @@ def add_arguments(ap):
     ap.add_argument("--cycles", type=int, default=8, help="speed sweep: engine cycles counted per speed (default 8)")
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
+    ap.add_argument("--supply-pressure-bar", metavar="LIST",
+                    help=f"hydraulic tensioner: oil supply pressures [bar, gauge], a comma list (default "
+                    f"{job.SUPPLY_PRESSURE / job.BAR:g}), each with every speed")
+    ap.add_argument("--oil-temperature-c", metavar="LIST",
+                    help=f"hydraulic tensioner: oil temperatures [degC], a comma list (default "
+                    f"{job.OIL_TEMPERATURE - job.ZERO_CELSIUS:g}), each with every speed")
     ap.add_argument("--workers", type=int, help="LocalCluster worker processes (default: one per core)")
     ap.add_argument("--scheduler", help="address of a running Dask scheduler instead of a LocalCluster")
     ap.add_argument("--cache", help="cache directory (default OUT/cache)")
@@ -86,6 +107,8 @@ def check(ap, args):
     try:
         args.speeds = speeds(args.rpm) if args.rpm else ([] if args.runup else speeds(DEFAULT_RPM))
         args.runup_speeds = speed_range(args.runup) if args.runup else None
+        pressures = values("--supply-pressure-bar", args.supply_pressure_bar) if args.supply_pressure_bar else [None]
+        temperatures = values("--oil-temperature-c", args.oil_temperature_c) if args.oil_temperature_c else [None]
     except ValueError as e:
         ap.error(str(e))
     if not args.ramp_time > 0.0:
@@ -100,18 +123,36 @@ def check(ap, args):
         args.drive = str(pathlib.Path(args.drive).resolve())
     if args.tables:
         args.tables = str(pathlib.Path(args.tables).resolve())
+    args.oil_settings = oil_settings(args.drive, pressures, temperatures)
+    given = [f"{option} {text}" for option, text in (("--supply-pressure-bar", args.supply_pressure_bar),
+                                                    ("--oil-temperature-c", args.oil_temperature_c)) if text]
+    checks.print_lines([], job.inert_oil_notes(drive_json(args.drive), given))
     return args
+
+
+def oil_settings(drive, pressures, temperatures):
+    """[(supply pressure [Pa], oil temperature [K])] of the lists in bar and degC (None: not given,
+    the case's default), each validated as the main job's options (UserError)."""
+    settings = []
+    for bar, celsius in itertools.product(pressures, temperatures):
+        oil = job.hydraulic_options(drive, bar, celsius)
+        settings.append((None if bar is None else oil["supply_pressure"],
+                         None if celsius is None else oil["oil_temperature"]))
+    return settings
 
 
 def cases_of(args):
     """(speed-sweep cases, run-up cases) of the options."""
     base = Case(rpm=0.0, fidelity=args.fidelity, method=args.method, solver_step=args.solver_step, cycles=args.cycles,
                 drive=args.drive, tables=args.tables)
-    sweep = [dataclasses.replace(base, rpm=r) for r in args.speeds]
+    settings = getattr(args, "oil_settings", [(None, None)])
+    sweep = [dataclasses.replace(base, rpm=r, supply_pressure=p, oil_temperature=T)
+             for (p, T), r in itertools.product(settings, args.speeds)]
     runup = []
     if args.runup_speeds:
         lo, hi = args.runup_speeds
-        runup = [dataclasses.replace(base, rpm=lo, rpm_end=hi, ramp_s=args.ramp_time)]
+        runup = [dataclasses.replace(base, rpm=lo, rpm_end=hi, ramp_s=args.ramp_time, supply_pressure=p,
+                                     oil_temperature=T) for p, T in settings]
     return sweep, runup
 
 
@@ -124,6 +165,9 @@ def report(name, cases, results, computed, seconds):
             F = [row["tensioner.F.mean"] for row in rows]
             what = (f"tensioner F mean {F[0]:.1f} +- {rows[0]['tensioner.F.mean.ci95']:.1f} N" if not case.runup
                     else f"{len(rows)} engine cycles, tensioner F mean {min(F):.1f}-{max(F):.1f} N")
+            chamber = cycle_stats.CHAMBER + ".mean_bar"
+            if chamber in rows[0] and not case.runup:
+                what += f", chamber {rows[0][chamber]:.1f} +- {rows[0][chamber + '.ci95']:.1f} bar"
             print(f"  ok      {case.label()}: {what}, {r['cpu_s']:.1f} CPU s")
         else:
             print(f"  FAILED  {case.label()}: {r['error']}")

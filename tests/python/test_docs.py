@@ -15,7 +15,9 @@ result written by a script in Markdown (docs/benchmark_*.md) is quoted by a text
 
     0.787<!-- figure: docs/benchmark_realtime.md "RTF (CPU s inside fmi2DoStep per simulated s): **0.787**" -->
 
-and every number of the figure must occur in that text.
+and every number of the figure must occur in that text. A sweep's dataset (.nc) is quoted by
+VARIABLE@COORDINATE=VALUE per number, several coordinates joined by commas
+(tensioner.F.mean@rpm=3000,supply_pressure_bar=5).
 
 The variable tables of docs/fmu.md are generated from the model descriptions between
 `<!-- variables: FILE -->` and `<!-- end variables -->`; `python tests/python/test_docs.py`
@@ -104,6 +106,18 @@ def agrees(printed, value):
     return abs(value - float(printed)) <= half_unit * (1 + 1e-9)
 
 
+def nc_value(ds, key):
+    """The value of VARIABLE@COORDINATE=VALUE[,COORDINATE=VALUE...] in a sweep's dataset: the one
+    point whose coordinates (along `point`: rpm, supply_pressure_bar, ...) have those values."""
+    name, selectors = key.split("@")
+    variable = ds[name]
+    for selector in selectors.split(","):
+        coordinate, wanted = selector.split("=")
+        variable = variable.where(variable[coordinate] == float(wanted), drop=True)
+    assert variable.size == 1, f"{key}: {variable.size} values match"
+    return float(variable.item())
+
+
 def test_there_are_figure_markers():
     assert len(markers()) >= 10
 
@@ -122,14 +136,12 @@ def test_figure_equals_its_source(doc, line, source, arguments, figure):
         for printed, key in zip(numbers[-len(keys):], keys):
             value = resolve(data, key)
             assert agrees(printed, value), f"{where}: {printed} but {source} {key} is {value}"
-    elif path.suffix == ".nc":  # a sweep's dataset: VARIABLE@COORDINATE=VALUE per number
+    elif path.suffix == ".nc":  # a sweep's dataset: VARIABLE@COORDINATE=VALUE[,COORDINATE=VALUE...] per number
         import xarray
         keys = arguments.split()
         with xarray.open_dataset(path) as ds:
             for printed, key in zip(numbers[-len(keys):], keys):
-                name, selector = key.split("@")
-                coordinate, wanted = selector.split("=")
-                value = float(ds[name].sel({coordinate: float(wanted)}).item())
+                value = nc_value(ds, key)
                 assert agrees(printed, value), f"{where}: {printed} but {source} {key} is {value}"
     else:
         quoted = re.fullmatch(r'"(.*)"', arguments)

@@ -31,7 +31,8 @@ def test_outputs_finite_and_tensioner_force_plausible(closed_loop_2000):
             assert np.all(np.isfinite(v)), k
     F = d["tensioner.F"][sel]
     # typical: quasi-static tensioner force 100-400 N, dynamic peaks 1-3 kN at resonance; the
-    # default tensioner's preload is 60 N, so a mean of 30-400 N and peaks below 3 kN
+    # default hydraulic tensioner at rest pushes about 60 N (its spring's 25 N and the oil's 2.9 bar
+    # on the plunger), so a mean of 30-400 N and peaks below 3 kN
     assert 30.0 < F.mean() < 400.0
     assert F.min() >= 0.0 and F.max() < 3000.0
     # the camshafts follow the crankshaft at half its speed
@@ -74,6 +75,8 @@ def test_main_job_open_loop_quick(tmp_path):
                 "camshaftExhaust.timing.peakToPeak_degCA"}
     expected |= {f"tensioner.F.order{k}" for k in (2, 4, 6, 8, 21)}
     expected |= {f"tensionGuide.phi.order{k}_deg" for k in (2, 4, 6, 8, 21)}
+    # the default drive's tensioner is hydraulic: its chamber pressure's statistics too
+    expected |= {f"tensioner.chamberPressure.{s}_bar" for s in ("mean", "peakToPeak", "min")}
     assert set(summary) == expected
     for key, s in summary.items():
         assert set(s) == {"mean", "ci95", "cycles", "unit"}, key
@@ -94,7 +97,7 @@ def test_main_job_span_fidelity_quick(tmp_path):
     assert p.returncode == 0, p.stderr + p.stdout
     assert p.stdout.startswith("ChainDrive.fmu, span fidelity:") and "fixed-verlet at 20 us" in p.stdout
     summary = json.loads((tmp_path / "summary.json").read_text())
-    assert list(summary) == cycle_stats.headline_keys(21)
+    assert list(summary) == cycle_stats.headline_keys(21, hydraulic=True)
     assert all(s["cycles"] == 3 and np.isfinite(s["mean"]) for s in summary.values())
     run = json.loads((tmp_path / "run.json").read_text())
     assert run["fidelity"] == "span" and run["solverStep_s"] == 2e-5
