@@ -86,6 +86,15 @@ def is_rigid(m):
     return m["contact"] != "compliant"
 
 
+def refused(process):
+    """chaindrive-run's own one-line refusal of a method on the drive (the combination's rule, before
+    any step; exit status 1 without a summary), or None."""
+    lines = [line for line in process.stderr.splitlines() if line.startswith("chaindrive-run: ")]
+    if process.returncode != 1 or len(lines) != 1 or "does not integrate" not in lines[0]:
+        return None
+    return lines[0][len("chaindrive-run: "):]
+
+
 def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initial_state=None, drive=None,
                save_state=None, write_csv=True, extra=(), output_step=OUTPUT_STEP):
     """One chaindrive-run; returns the parsed summary (with 'kind' = ok / failure kind / timeout).
@@ -115,6 +124,9 @@ def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initi
         return dict(kind="timeout", failure=f"exceeded the wall-time budget of {timeout:g} s", cpuSeconds=timeout,
                     simulated=0.0, requested=duration, csv=None)
     wall = time.monotonic() - t0
+    refusal = refused(p)
+    if refusal:  # the method does not run this drive (event-driven: a hydraulic tensioner's chamber)
+        return dict(kind="refused", failure=refusal, cpuSeconds=0.0, simulated=0.0, requested=duration, csv=None)
     if p.returncode not in (0, 3) or not summary.exists():
         raise RuntimeError(f"chaindrive-run failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr.strip()}")
     s = json.loads(summary.read_text())

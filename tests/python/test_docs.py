@@ -21,7 +21,8 @@ VARIABLE@COORDINATE=VALUE per number, several coordinates joined by commas
 
 The variable tables of docs/fmu.md are generated from the model descriptions between
 `<!-- variables: FILE -->` and `<!-- end variables -->`; `python tests/python/test_docs.py`
-writes them again after a model description changed.
+writes them again after a model description changed, and the marked figures from their result
+files after a result file changed (at the printed precision; the text around them is read anew).
 """
 import json
 import pathlib
@@ -291,7 +292,55 @@ def test_readme_interface_table_matches_the_model_description():
         assert inputs <= listed, f"README's interface table lacks the inputs {sorted(inputs - listed)}"
 
 
+def source_values(path, keys):
+    """The values of the key paths in a result file (.json or a sweep's .nc), in order."""
+    if path.suffix == ".json":
+        data = json.loads(path.read_text(encoding="utf-8"))
+        return [resolve(data, key) for key in keys]
+    import xarray
+    with xarray.open_dataset(path) as ds:
+        return [nc_value(ds, key) for key in keys]
+
+
+def printed_like(printed, value):
+    """value printed as `printed` is: as many decimals, its sign shown when `printed` shows one."""
+    decimals = len(printed.split(".")[1]) if "." in printed else 0
+    return ("+" if printed.startswith("+") and value >= 0 else "") + f"{value:.{decimals}f}"
+
+
+def update_figures(doc):
+    """Writes the marked figures of a document again from their result files (.json, .nc; figures
+    quoted from Markdown and those with an exponent stay); returns how many changed."""
+    changed = 0
+    lines = doc.read_text(encoding="utf-8").split("\n")
+    for n, line in enumerate(lines):
+        start, out = 0, []
+        for m in MARKER.finditer(line):
+            path, keys = ROOT / m.group(1), m.group(2).split()
+            cell = max(start, line.rfind("|", 0, m.start()) + 1)
+            out.append(line[start:cell])
+            segment = line[cell:m.start()]
+            found = list(NUMBER.finditer(segment))[-len(keys):] if path.suffix in (".json", ".nc") else []
+            if found and all("e" not in f.group().lower() for f in found):
+                values = source_values(path, keys[-len(found):])
+                for f, value in reversed(list(zip(found, values))):
+                    new = printed_like(f.group(), value)
+                    changed += new != f.group()
+                    segment = segment[:f.start()] + new + segment[f.end():]
+            out.append(segment + m.group(0))
+            start = m.end()
+        lines[n] = "".join(out) + line[start:]
+    doc.write_text("\n".join(lines), encoding="utf-8")
+    return changed
+
+
 if __name__ == "__main__":
+    # after a model description or a committed result file changed: the generated tables and the
+    # marked figures written again (then read the text around each changed figure)
     before, after = fmu_reference(write=True)
     print("docs/fmu.md: variable tables " + ("unchanged" if before == after else "written"))
+    for doc in documents():
+        count = update_figures(doc)
+        if count:
+            print(f"{rel(doc)}: {count} figures written from their result files")
     sys.exit(0)

@@ -64,8 +64,8 @@ B - A as RMS over 1 ms windows, time counted from the perturbation:
     later cycles below it), the twins' cycle statistics from the largest such j over the
     statistics; the report adds the rank correlation of x_A and x_B over the pairs.
 
---quick: the default setting only, a 1-cycle run-in, no step check, 3 pairs of 2 cycles: a
-smoke test (about 15 s on 2 cores; run by tests/python/study/test_chaos.py).
+--quick: the default setting only, a 1-cycle run-in, no step check, 3 pairs of QUICK_CYCLES (6) cycles: a
+smoke test (about 10 s on 2 cores; run by tests/python/study/test_chaos.py).
 
 Outputs in DIR (default results/chaos): results.json, divergence.png (windowed twin difference
 over time per setting with the fitted slopes), cycles.png (per-cycle twin statistics),

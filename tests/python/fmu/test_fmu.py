@@ -339,10 +339,14 @@ def test_contact_method_parameter_selects_time_stepping():
     assert not np.array_equal(ts, compliant)
 
 
+SPRING_DAMPER_DRIVE = paths.ROOT / "tests" / "data" / "drives" / "default_drive_spring_damper.json"
+
+
 def test_event_driven_storm_is_a_discard_with_the_reason():
     """The event-driven method meets a runaway event rate on the drive (a result of the stability
-    study): the FMU reports it as fmi2Discard naming the rate, and the state can be restored."""
-    s = fmu.Slave("ed", parameters={"contact.method": "event-driven"})
+    study; it runs the drive with the spring-damper law, not integrating a hydraulic chamber): the FMU
+    reports it as fmi2Discard naming the rate, and the state can be restored."""
+    s = fmu.Slave("ed", parameters={"contact.method": "event-driven", "driveFile": str(SPRING_DAMPER_DRIVE)})
     s.initialize(inputs=INPUTS)
     state = s.slave.getFMUState()
     with pytest.raises(FMICallException) as e:
@@ -352,6 +356,16 @@ def test_event_driven_storm_is_a_discard_with_the_reason():
     assert any("runaway events" in m and "per s" in m for m in s.errors()), s.errors()
     s.slave.setFMUState(state)
     s.slave.freeFMUState(state)
+    s.close()
+
+
+def test_event_driven_refuses_the_hydraulic_tensioner_by_name():
+    """The default drive's hydraulic chamber is not integrated by the event-driven method: the FMU
+    refuses the combination when the initialization ends, naming the parameter."""
+    s = fmu.Slave("ed-hydraulic", parameters={"contact.method": "event-driven"})
+    with pytest.raises(FMICallException):
+        s.initialize(inputs=INPUTS)
+    assert any("contact.method" in m and "hydraulic" in m for m in s.errors()), s.errors()
     s.close()
 
 

@@ -8,7 +8,7 @@ import sys
 import pytest
 
 from harness import paths
-from harness.study.chaos import analysis
+from harness.study.chaos import analysis, twins
 
 
 def run_chaos(out, *options):
@@ -42,10 +42,10 @@ def test_default_drive_diverges_at_a_positive_rate(quick):
 def test_per_cycle_twin_statistics_are_reported(quick):
     _, r = quick
     c = r["settings"][0]["cycles"]
-    assert c["pairs"] == 3 and c["cycles"] == 2
+    assert c["pairs"] == 3 and c["cycles"] == twins.QUICK_CYCLES
     for key in analysis.CYCLE_KEYS:
         k = c["keys"][key]
-        assert len(k["ratio"]) == 2 and all(x >= 0.0 for x in k["ratio"]) and 0.0 <= k["bound"] < 1.0
+        assert len(k["ratio"]) == twins.QUICK_CYCLES and all(x >= 0.0 for x in k["ratio"]) and 0.0 <= k["bound"] < 1.0
 
 
 def test_a_blow_up_is_a_failure_not_a_number(tmp_path):
