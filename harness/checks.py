@@ -15,7 +15,8 @@ import math
 from . import paths
 
 ENERGY_BALANCE_LIMIT = 0.05  # |error| of the energy balance over the counted cycles, of the dissipated energy
-FIDELITY_STUDY = paths.ROOT / "docs" / "study" / "results.json"  # the committed fidelity ladder ("fidelity")
+# the committed fidelity ladder of the default drive: one comparison per speed (python -m harness fidelity)
+FIDELITY_CHECKS = paths.ROOT / "docs" / "study" / "fidelity_hydraulic"
 EXIT_STRICT = 1  # the exit status of a run with --strict whose checks missed a limit
 
 
@@ -43,7 +44,8 @@ def fidelity_notes(fidelity, drive):
     it was checked (the committed fidelity ladder), and that it was checked on the default drive only."""
     if fidelity == "link":
         return []
-    ladder = json.loads(FIDELITY_STUDY.read_text()).get("fidelity", []) if FIDELITY_STUDY.exists() else []
+    ladder = sorted((json.loads(f.read_text()) for f in FIDELITY_CHECKS.glob("fidelity-*.json")),
+                    key=lambda speed: speed["rpm"])
     if not ladder:
         return [f"{fidelity} fidelity: not checked against the link model; its accuracy is unknown"]
     rows = [row for speed in ladder for row in speed["rows"]]
@@ -53,7 +55,7 @@ def fidelity_notes(fidelity, drive):
     examples = "; ".join(f"{row['key']} {row['difference']:+.0f} {row['differenceUnit']}" for row in worst)
     where = "" if drive is None else " (on the default drive only; this drive is unchecked)"
     return [f"{fidelity} fidelity: outside the accuracy it was checked for: against the link model at {speeds} rpm"
-            f"{where} it missed {len(missed)} of {len(rows)} tolerances (docs/study/fidelity.md), the largest: "
+            f"{where} it missed {len(missed)} of {len(rows)} tolerances (docs/study/fidelity_hydraulic.md), the largest: "
             f"{examples}; use --fidelity link where these quantities matter"]
 
 
