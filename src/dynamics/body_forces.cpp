@@ -26,18 +26,30 @@ double addChamber(const TensionerModel& t, double stroke, double sDot, const Cha
   r.flows = h.flows;
   r.supplyPower = h.supplyPower;
   r.power += h.dissipatedPower;
-  // the compressed oil's energy, p^2 V / (2 K) at the chamber's volume: exact for a constant bulk
-  // modulus, what the energy balance over a run needs (the oil stores little beside what it passes)
-  const double volume = t.hydraulic.chamberVolume + plungerArea(t.hydraulic) * stroke;
-  const double oilEnergy = h.pressure * h.pressure * volume / (2.0 * effectiveBulkModulus(t.hydraulic.oil, h.pressure));
-  r.energy += oilEnergy;
-  const double beyond = std::max(t.hydraulic.strokeMin - stroke, stroke - t.hydraulic.strokeMax);
-  const double stops = beyond > 0.0 ? 0.5 * t.hydraulic.endStopStiffness * beyond * beyond : 0.0;
-  r.staticPotential = -h.pressure * plungerArea(t.hydraulic) * stroke + stops - oilEnergy;
   return h.force;
 }
 
+// The compressed oil's energy, p^2 V / (2 K) at the chamber's volume: exact for a constant bulk
+// modulus, what the energy balance over a run needs (the oil stores little beside what it passes).
+double oilEnergy(const TensionerModel& t, const TensionerResult& r) {
+  const double volume = t.hydraulic.chamberVolume + plungerArea(t.hydraulic) * r.stroke;
+  const double p = r.chamberPressure;
+  return p * p * volume / (2.0 * effectiveBulkModulus(t.hydraulic.oil, p));
+}
+
 }  // namespace
+
+double tensionerEnergy(const TensionerModel& t, const TensionerResult& r) {
+  return r.energy + (t.kind == TensionerKind::Hydraulic ? oilEnergy(t, r) : 0.0);
+}
+
+double heldChamberPotential(const TensionerModel& t, const TensionerResult& r) {
+  if (t.kind != TensionerKind::Hydraulic) return 0.0;
+  const double s = r.stroke;
+  const double beyond = std::max(t.hydraulic.strokeMin - s, s - t.hydraulic.strokeMax);
+  const double stops = beyond > 0.0 ? 0.5 * t.hydraulic.endStopStiffness * beyond * beyond : 0.0;
+  return -r.chamberPressure * plungerArea(t.hydraulic) * s + stops - oilEnergy(t, r);
+}
 
 double tensionerOilViscosity(const TensionerModel& t) {
   return t.hydraulicChamber() ? oilViscosity(t.hydraulic.oil, t.hydraulic.oilTemperature) : 0.0;
@@ -83,7 +95,6 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
     d.tensionerRate = t.rate;
     d.chamberPressureRate = t.pressureRate;
     d.chamberPressure = t.chamberPressure;
-    d.chamberStaticPotential = t.staticPotential;
     d.tensionerFlows = t.flows;
   }
 }
@@ -140,7 +151,8 @@ double bodyPotentialEnergy(const Model& m, const Data& d, double& gravityEnergy)
     const int r = m.tensioner.rotor;
     ChamberState oil = d.chamber;
     oil.supplyPressure = d.inputs.supplyPressure;
-    e += tensionerForce(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r], oil).energy;
+    e += tensionerEnergy(m.tensioner, tensionerForce(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r],
+                                                     d.rotorRate[r], oil));
   }
   return e;
 }

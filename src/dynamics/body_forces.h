@@ -14,18 +14,23 @@ struct TensionerResult {
   double rate = 0.0;    // [m/s]
   double torque = 0.0;  // [N m] on the guide rotor (math sense)
   double power = 0.0;   // dissipated [W]
-  double energy = 0.0;  // spring energy [J], and the compressed oil's
+  double energy = 0.0;  // spring energy [J] (the compressed oil's: tensionerEnergy)
   double supplyPower = 0.0;    // [W] the oil supply's (hydraulic)
   double pressureRate = 0.0;   // [Pa/s] of the chamber's state (hydraulic)
   double chamberPressure = 0.0;  // [Pa] gauge, the chamber's (hydraulic; cavitating: the vapour's)
-  // what the chamber adds to the potential of a static solve, where its pressure is held: the
-  // work of its force at that pressure and of the end stops (hydraulic; the compressed oil's
-  // energy, counted in `energy` for the energy balance of a run, taken out)
-  double staticPotential = 0.0;  // [J]
   HydraulicFlows flows;        // [m3/s] (hydraulic)
 };
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,
                                const ChamberState& chamber);
+
+/// The tensioner's stored energy [J]: its spring's and a hydraulic chamber's compressed oil,
+/// p^2 V / (2 K) (what the energy balance of a run counts; not evaluated with every force).
+double tensionerEnergy(const TensionerModel& t, const TensionerResult& r);
+
+/// What a hydraulic chamber adds to the potential of a static solve, where its pressure is held,
+/// beyond tensionerEnergy: the work of its force at that pressure and of the end stops, less the
+/// compressed oil's energy [J] (0 for the spring-damper law).
+double heldChamberPotential(const TensionerModel& t, const TensionerResult& r);
 
 /// The oil's viscosity of a model's hydraulic tensioner at its temperature (0 without one).
 double tensionerOilViscosity(const TensionerModel& t);

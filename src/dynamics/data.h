@@ -223,7 +223,6 @@ struct Data {
   ChamberState chamber;
   double chamberPressureRate = 0.0;   // [Pa/s] of the chamber's state
   double chamberPressure = 0.0;       // [Pa] gauge, the chamber's (the state, at least the vapour's)
-  double chamberStaticPotential = 0.0;  // [J] (body_forces.h: TensionerResult::staticPotential)
   HydraulicFlows tensionerFlows;      // [m3/s]
   // power terms
   double powerInput = 0.0, powerDissipated = 0.0;

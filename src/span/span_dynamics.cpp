@@ -154,7 +154,8 @@ EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {
     const int r = lm.tensioner.rotor;
     ChamberState oil = d.chamber;
     oil.supplyPressure = d.inputs.supplyPressure;
-    e.elastic += tensionerForce(lm.tensioner, lm.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r], oil).energy;
+    e.elastic += tensionerEnergy(lm.tensioner, tensionerForce(lm.tensioner, lm.rotors[r].axis, d.rotorCos[r],
+                                                              d.rotorSin[r], d.rotorRate[r], oil));
   }
   e.inputWork = y[m.stateInputWork];
   e.dissipated = y[m.stateDissipated];

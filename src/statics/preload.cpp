@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "dynamics/body_forces.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/hydraulic_tensioner.h"
 #include "dynamics/contact_compliant.h"
@@ -218,13 +219,24 @@ double PreloadSolve::residual(const std::vector<double>& yy, Eigen::VectorXd& ou
   return std::sqrt(ss / nf);
 }
 
+// A hydraulic chamber at the pressure the solve holds: what it adds to the potential beyond the
+// elastic energy (body_forces.h).
+double heldChamberPotential(const Model& m, const Data& d) {
+  if (!m.tensioner.hydraulicChamber()) return 0.0;
+  const int r = m.tensioner.rotor;
+  ChamberState oil = d.chamber;
+  oil.supplyPressure = d.inputs.supplyPressure;
+  const TensionerResult t = tensionerForce(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], d.rotorRate[r], oil);
+  return heldChamberPotential(m.tensioner, t);
+}
+
 // Total potential of the conservative forces: elastic (joints, contacts, tensioner spring),
 // gravity, the load torques and the d'Alembert forces of the nominal motion. The residual is
 // (nearly) minus its gradient; friction at the nominal sliding velocities is the small rest.
 double PreloadSolve::potential(const std::vector<double>& yy) {
   generalizedForces(m, d, held, 0.0, yy.data());
   const EnergyTerms e = energyTerms(m, d, yy.data());
-  double p = e.elastic + e.gravity + d.chamberStaticPotential;  // (a hydraulic chamber at its held pressure)
+  double p = e.elastic + e.gravity + heldChamberPotential(m, d);
   for (int g = 0; g < m.nGen; ++g) {
     const int f = free.index[g];
     if (f < 0) continue;
