@@ -168,8 +168,8 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None):
     n = int(round(duration / step))
     u0 = inputs(0.0, 0.0, 0.0, 0.0)
     s.initialize(inputs=u0)
-    names = s.outputs
-    rows = [[0.0] + [s.get(names)[k] for k in names] + [u0["crankshaft.w"], np.nan, np.nan]]
+    names, applied = s.outputs, list(u0)  # (every input the loop sets, recorded as input.<name>)
+    rows = [[0.0] + [s.get(names)[k] for k in names] + [u0[n] for n in applied]]
     prog = Progress(duration, "closed loop") if progress else None
     for k in range(n):
         o = s.get(["crankshaft.phi", "camshaftIntake.phi", "camshaftExhaust.phi"])
@@ -178,14 +178,13 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None):
                    2.0 * math.degrees(o["camshaftExhaust.phi"]))
         s.step(step, inputs=u, t=k * step)
         v = s.get(names)
-        rows.append([(k + 1) * step] + [v[x] for x in names] + [u["crankshaft.w"], u["camshaftIntake.tau"],
-                                                               u["camshaftExhaust.tau"]])
+        rows.append([(k + 1) * step] + [v[x] for x in names] + [u[n] for n in applied])
         if prog:
             prog.update((k + 1) * step)
     if prog:
         prog.done()
     s.close()
-    cols = ["time"] + names + ["input.crankshaft.w", "input.camshaftIntake.tau", "input.camshaftExhaust.tau"]
+    cols = ["time"] + names + [f"input.{n}" for n in applied]
     return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
 
 

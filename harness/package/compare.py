@@ -90,9 +90,7 @@ def run_timing(fmu_dir, duration, method=None):
     inputs = job.table_inputs(tables.camshaft_torque(config.rpm, None), tables.crankshaft_speed(config.rpm, None))
     record, _ = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
     # (the record's inputs of row 0 are those of the initialization, looked up at zero angles)
-    applied = {name: np.array(record[f"input.{name}"]) for name in fmu.INPUTS}
-    for name, value in inputs(0.0, 0.0, 0.0, 0.0).items():
-        applied[name][0] = value
+    applied = {name: np.array(record[f"input.{name}"]) for name in inputs(0.0, 0.0, 0.0, 0.0)}
     outputs = {k: v for k, v in record.items() if k != "time" and not k.startswith("input.")}
     return Run(job.parameters_of(config), applied, outputs)
 

@@ -71,7 +71,8 @@ REFERENCE_CHECK = dict(id="reference-check", label="reference check: compliant /
 
 KIND_CODES = {"blow-up": "BU", "non-finite": "NF", "tunnelling": "TU", "lcp-ray-termination": "RAY",
               "lcp-numerical-failure": "LCP", "lcp-iteration-limit": "LIT", "newton-failure": "NEW",
-              "step-size-collapse": "STEP", "runaway-events": "EVT", "timeout": "TIME", "other": "ERR"}
+              "step-size-collapse": "STEP", "runaway-events": "EVT", "timeout": "TIME", "other": "ERR",
+              "refused": "REF"}  # (refused: the method does not run the drive, before its first step)
 
 
 def default_drive_json():
@@ -126,7 +127,8 @@ def run_solver(out_dir, tag, m, value, rpm, inputs_csv, duration, timeout, initi
     wall = time.monotonic() - t0
     refusal = refused(p)
     if refusal:  # the method does not run this drive (event-driven: a hydraulic tensioner's chamber)
-        return dict(kind="refused", failure=refusal, cpuSeconds=0.0, simulated=0.0, requested=duration, csv=None)
+        return dict(kind="refused", failure=refusal, failureTime=0.0, cpuSeconds=0.0, simulated=0.0,
+                    requested=duration, csv=None)
     if p.returncode not in (0, 3) or not summary.exists():
         raise RuntimeError(f"chaindrive-run failed ({p.returncode}): {' '.join(cmd)}\n{p.stderr.strip()}")
     s = json.loads(summary.read_text())

@@ -366,7 +366,7 @@ def test_event_driven_refuses_the_hydraulic_tensioner_by_name():
     with pytest.raises(FMICallException):
         s.initialize(inputs=INPUTS)
     assert any("contact.method" in m and "hydraulic" in m for m in s.errors()), s.errors()
-    s.close()
+    s.slave.freeInstance()
 
 
 @pytest.mark.parametrize("name,value,text", [("contact.method", "rigid", "contact.method"),
