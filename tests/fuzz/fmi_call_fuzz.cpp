@@ -62,9 +62,12 @@ bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir)
 FuzzPaths pathsIn(const std::string& sourceDir) {
   FuzzPaths p;
   p.resourceDir = sourceDir + "/src/drives";
-  // the default drive with the spring-damper tensioner law (the default file is the FMU's own drive):
-  // both laws are fuzzed, and the methods that take only the spring-damper law (event-driven) run
-  p.driveFile = sourceDir + "/tests/data/drives/default_drive_spring_damper.json";
+  p.driveFile = sourceDir + "/src/drives/default_drive.json";
+  // the default drive with the spring-damper tensioner law: the method combinations that take only
+  // that law (event-driven) run on it, with their bounded number of steps; a random sequence that
+  // picks event-driven meets the default drive's hydraulic tensioner and is refused (an event
+  // storm of a random sequence, unbounded, can take a minute under the sanitizers)
+  p.springDamperDriveFile = sourceDir + "/tests/data/drives/default_drive_spring_damper.json";
   p.notADriveFile = sourceDir + "/CMakeLists.txt";
   return p;
 }

@@ -228,7 +228,7 @@ std::vector<Assignment> methodAssignments(std::size_t index, const FuzzPaths& pa
   std::vector<Assignment> pins = {stringAssignment(kSolverMethod, c.integrator), stringAssignment(kContactMethod, c.contact),
                                   stringAssignment(kChainJointModel, c.joints), stringAssignment(kFidelity, "link"),
                                   booleanAssignment(kSolverPreload, false)};
-  if (c.springDamper) pins.push_back(stringAssignment(kDriveFile, paths.driveFile));
+  if (c.springDamper) pins.push_back(stringAssignment(kDriveFile, paths.springDamperDriveFile));
   return pins;
 }
 

@@ -16,7 +16,8 @@ namespace chaindrive::fuzz {
 /// Files and folders of the source tree the fuzz points the FMU at.
 struct FuzzPaths {
   std::string resourceDir;    // holds default_drive.json, like the FMU's resources folder
-  std::string driveFile;      // a valid drive description
+  std::string driveFile;      // a valid drive description (the default drive's file)
+  std::string springDamperDriveFile;  // the default drive with the spring-damper tensioner law
   std::string notADriveFile;  // an existing file that is not JSON
 };
 
