@@ -1,8 +1,13 @@
-"""Generates the SYNTHESIZED "measured" tables of harness/tables/data: camshaft load torques and
-the crankshaft speed over one engine cycle (720 deg crank) per engine speed, from the physical
-model of harness/tables/valvetrain.py plus simulated measurement artefacts. No measurement enters.
+"""Generates the SYNTHESIZED "measured" tables of harness/tables/data (engine i4-bucket) and
+harness/tables/data_sport (engine i4-sport): camshaft load torques and the crankshaft speed over
+one engine cycle (720 deg crank) per engine speed, from the physical model of
+harness/tables/valvetrain.py plus simulated measurement artefacts. No measurement enters.
 
-    python -m harness tables [--out harness/tables/data] [--rpm 1000 2000 ...] [--seed N]
+    python -m harness tables [--engine i4-bucket|i4-sport] [--out DIR] [--rpm 1000 2000 ...] [--seed N]
+
+--out defaults to the engine's folder (DATA_DIRS). Besides the files it prints the model's
+magnitudes (summary) and the table of what the written files hold (files_table, the table of
+the folder's README.md).
 
 Deterministic: the same seed (and numpy's PCG64 generator) gives byte-identical files; each
 engine speed and quantity draws from its own stream (seed, rpm, quantity), so adding or removing
@@ -26,7 +31,7 @@ import pathlib
 import numpy as np
 
 from . import valvetrain
-from .tables import DATA_DIR
+from .tables import DATA_DIR, load, tabulated_speeds
 
 RESOLUTION_DEG = 0.5          # table step; rows 0.0 ... 719.5 (the value at 720 is the one at 0)
 DEFAULT_RPMS = (1000, 2000, 3000, 4000, 5000, 6000)
@@ -39,6 +44,8 @@ SPEED_BANDWIDTH_HZ = 3000.0   # encoder-based speed measurement [E]
 TORQUE_OFFSET_SD = 0.05       # N m
 TORQUE_STEP = 0.01            # N m
 SPEED_STEP = 0.01             # rpm
+# each engine's folder of shipped tables
+DATA_DIRS = {"i4-bucket": DATA_DIR, "i4-sport": DATA_DIR.parent / "data_sport"}
 
 PROVENANCE_TORQUE = ("SYNTHESIZED by harness/tables/make_tables.py (valve-train model, "
                      "harness/tables/valvetrain.py), not a measurement")
@@ -66,19 +73,19 @@ def _quantize(y, step):
     return np.rint(y / step) * step + 0.0  # + 0.0 turns -0.0 into 0.0
 
 
-def camshaft_torques(rpm, seed=DEFAULT_SEED):
+def camshaft_torques(rpm, seed=DEFAULT_SEED, engine=valvetrain.DEFAULT_ENGINE):
     """{column: torque [N m]} over angles() with the artefacts, plus the physical signals and
     notes for the header."""
     theta = angles()
     rng = _rng(seed, rpm, 0)
     scales = 1.0 + COMBUSTION_COV * rng.standard_normal(CYCLES)
     out, physical, notes = {}, {}, {}
-    for train in valvetrain.CAMSHAFTS:
-        clean = valvetrain.camshaft_load(train, theta, rpm).total
+    for train in engine.camshafts:
+        clean = valvetrain.camshaft_load(train, theta, rpm, engine).total
         sigma = NOISE_FRACTION * 0.5 * (clean.max() - clean.min())
         acc = np.zeros_like(theta)
         for s in scales:
-            acc += valvetrain.camshaft_load(train, theta, rpm, crank_scale=s).total
+            acc += valvetrain.camshaft_load(train, theta, rpm, engine, crank_scale=s).total
             acc += sigma * rng.standard_normal(len(theta))
         y = lowpass_periodic(acc / CYCLES, rpm, TORQUE_BANDWIDTH_HZ)
         offset = TORQUE_OFFSET_SD * rng.standard_normal()
@@ -89,17 +96,18 @@ def camshaft_torques(rpm, seed=DEFAULT_SEED):
     return out, physical, notes
 
 
-def crankshaft_speed(rpm, seed=DEFAULT_SEED):
+def crankshaft_speed(rpm, seed=DEFAULT_SEED, engine=valvetrain.DEFAULT_ENGINE):
     """Crankshaft speed [rpm] over angles() with the artefacts, and the physical signal."""
     theta = angles()
     rng = _rng(seed, rpm, 1)
     to_rpm = 60.0 / (2.0 * math.pi)
-    clean = valvetrain.CRANK.speed(theta, rpm)[0] * to_rpm
+    crank = engine.crank
+    clean = crank.speed(theta, rpm)[0] * to_rpm
     sigma = NOISE_FRACTION * 0.5 * (clean.max() - clean.min())
     acc = np.zeros_like(theta)
     for _ in range(CYCLES):
         s = 1.0 + COMBUSTION_COV * rng.standard_normal()
-        acc += valvetrain.CRANK.speed(theta, rpm, s)[0] * to_rpm + sigma * rng.standard_normal(len(theta))
+        acc += crank.speed(theta, rpm, s)[0] * to_rpm + sigma * rng.standard_normal(len(theta))
     y = lowpass_periodic(acc / CYCLES, rpm, SPEED_BANDWIDTH_HZ)
     y += rpm - y.mean()
     return _quantize(y, SPEED_STEP), clean, sigma
@@ -111,25 +119,33 @@ def _header(quantity, rpm, provenance, units, extra):
     return "".join(f"# {l}\n" for l in lines)
 
 
-def _common_notes(seed):
+def _common_notes(seed, engine):
+    """The sampling, engine and generator lines. The default engine's lines are those its tables
+    had before there was a second engine (no name, no --engine), so its files stay byte-identical;
+    another engine's name leads its engine line and its --engine the generator line."""
+    readme = f"harness/tables/{DATA_DIRS[engine.name].name}/README.md"
+    if engine.name == valvetrain.DEFAULT_ENGINE.name:
+        name, option = "", ""
+    else:
+        name, option = f"{engine.name}, ", f" --engine {engine.name}"
     return [
         f"sampling: {RESOLUTION_DEG:g} deg crank, 0.0 to {720.0 - RESOLUTION_DEG:g} deg; periodic over one "
         "720-deg engine cycle (the value at 720 is the value at 0)",
-        "engine: 4-cylinder 4-stroke DOHC, firing order 1-3-4-2, 2 intake + 2 exhaust valves per cylinder, "
-        "bucket tappets; model and parameters in harness/tables/valvetrain.py and harness/tables/data/README.md",
-        f"generator: python -m harness tables --seed {seed}",
+        f"engine: {name}{engine.description}; model and parameters in harness/tables/valvetrain.py and {readme}",
+        f"generator: python -m harness tables{option} --seed {seed}",
     ]
 
 
-def write_tables(out_dir=DATA_DIR, rpms=DEFAULT_RPMS, seed=DEFAULT_SEED):
-    """Writes camshaft_torque_<n>rpm.csv and crankshaft_speed_<n>rpm.csv; returns the paths."""
-    out_dir = pathlib.Path(out_dir)
+def write_tables(out_dir=None, rpms=DEFAULT_RPMS, seed=DEFAULT_SEED, engine=valvetrain.DEFAULT_ENGINE):
+    """Writes camshaft_torque_<n>rpm.csv and crankshaft_speed_<n>rpm.csv of `engine` into out_dir
+    (default: the engine's folder, DATA_DIRS); returns the paths."""
+    out_dir = pathlib.Path(out_dir) if out_dir is not None else DATA_DIRS[engine.name]
     out_dir.mkdir(parents=True, exist_ok=True)
     theta = angles()
     written = []
     for rpm in rpms:
-        tau, _, notes = camshaft_torques(rpm, seed)
-        extra = _common_notes(seed) + [
+        tau, _, notes = camshaft_torques(rpm, seed, engine)
+        extra = _common_notes(seed, engine) + [
             f"artefacts: average of {CYCLES} cycles, per-cycle sensor noise "
             + ", ".join(f"{c} {s:.3f}" for c, (s, _) in notes.items())
             + f" N.m RMS; first-order low-pass {TORQUE_BANDWIDTH_HZ:g} Hz; offset "
@@ -147,8 +163,8 @@ def write_tables(out_dir=DATA_DIR, rpms=DEFAULT_RPMS, seed=DEFAULT_SEED):
                 f.write(f"{th:.1f}," + ",".join(f"{tau[c][i]:.2f}" for c in cols) + "\n")
         written.append(path)
 
-        speed, _, sigma = crankshaft_speed(rpm, seed)
-        extra = _common_notes(seed) + [
+        speed, _, sigma = crankshaft_speed(rpm, seed, engine)
+        extra = _common_notes(seed, engine) + [
             f"artefacts: average of {CYCLES} cycles with {100 * COMBUSTION_COV:g} % cycle-to-cycle variation of "
             f"the fluctuation, per-cycle sensor noise {sigma:.3f} rpm RMS; first-order low-pass "
             f"{SPEED_BANDWIDTH_HZ:g} Hz; mean set to the engine speed; quantized to {SPEED_STEP:g} rpm",
@@ -165,15 +181,15 @@ def write_tables(out_dir=DATA_DIR, rpms=DEFAULT_RPMS, seed=DEFAULT_SEED):
     return written
 
 
-def summary(rpms=DEFAULT_RPMS):
+def summary(rpms=DEFAULT_RPMS, engine=valvetrain.DEFAULT_ENGINE):
     """Text table of the physical model's magnitudes per engine speed (no artefacts)."""
     theta = angles()
     lines = ["rpm   camshaft  mean   p-p   min    max   orders (largest 3)   Fmin[N]  | crank order-2 [deg]  speed min-max [rpm]"]
     for rpm in rpms:
-        w = valvetrain.CRANK.speed(theta, rpm)[0] * 60.0 / (2.0 * math.pi)
+        w = engine.crank.speed(theta, rpm)[0] * 60.0 / (2.0 * math.pi)
         a2 = abs(np.fft.rfft(w)[4]) / len(w) * 2.0 / (2.0 * rpm) / valvetrain.DEG
-        for j, train in enumerate(valvetrain.CAMSHAFTS):
-            load = valvetrain.camshaft_load(train, theta, rpm)
+        for j, train in enumerate(engine.camshafts):
+            load = valvetrain.camshaft_load(train, theta, rpm, engine)
             t = load.total
             amp = np.abs(np.fft.rfft(t)) / len(t) * 2.0
             top = sorted(range(1, 80), key=lambda b: -amp[b])[:3]
@@ -184,19 +200,63 @@ def summary(rpms=DEFAULT_RPMS):
     return "\n".join(lines)
 
 
+def _spectrum(y):
+    """One-sided amplitude spectrum of one 720-deg cycle: bin b holds engine order b / 2."""
+    return np.abs(np.fft.rfft(y)) / len(y) * 2.0
+
+
+def _orders(amp, count):
+    """The `count` largest engine orders below 40 as 'order (amplitude)'."""
+    top = sorted(range(1, 80), key=lambda b: -amp[b])[:count]
+    return ", ".join(f"{b / 2:g} ({amp[b]:.1f})" for b in top)
+
+
+def files_table(data_dir, engine=valvetrain.DEFAULT_ENGINE):
+    """Markdown table of what the tables in data_dir hold (artefacts included), per engine speed:
+    camshaft torque mean, peak-to-peak (min to max) [N m] and largest engine orders (amplitude
+    [N m]); crankshaft order-2 angle amplitude [deg] (the engine's law A_2(n) in brackets), its
+    speed amplitude [rpm], the speed range [rpm] and the largest orders (amplitude [rpm])."""
+    data_dir = pathlib.Path(data_dir)
+    lines = ["| rpm | intake mean | intake p-p | intake orders | exhaust mean | exhaust p-p | exhaust orders "
+             "| crank order 2 [deg] | order 2 [rpm] | speed range | speed orders |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for rpm in tabulated_speeds(data_dir):
+        t = load(data_dir / f"camshaft_torque_{rpm:g}rpm.csv")
+        cells = [f"{rpm:g}"]
+        for c in ("camshaftIntake.tau", "camshaftExhaust.tau"):
+            y = t.columns[c]
+            cells += [f"{y.mean():.2f}", f"{y.max() - y.min():.1f} ({y.min():.1f} to {y.max():.1f})",
+                      _orders(_spectrum(y), 3)]
+        s = load(data_dir / f"crankshaft_speed_{rpm:g}rpm.csv").columns["crankshaft.speed_rpm"]
+        amp = _spectrum(s)
+        a2 = math.degrees(amp[4] / (2.0 * rpm))  # speed amplitude of order k = k n x angle amplitude [rad]
+        cells += [f"{a2:.3f} ({engine.crank.order2_amplitude_deg(rpm):.3f})", f"{amp[4]:.1f}",
+                  f"{s.min():.0f}-{s.max():.0f}", _orders(amp, 2)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def add_arguments(ap):
-    ap.add_argument("--out", default=str(DATA_DIR), help="output directory (default harness/tables/data)")
+    ap.add_argument("--engine", choices=list(valvetrain.ENGINES), default=valvetrain.DEFAULT_ENGINE.name,
+                    help=f"the engine (default {valvetrain.DEFAULT_ENGINE.name}); see harness/tables/valvetrain.py")
+    ap.add_argument("--out", help="output directory (default: the engine's folder, harness/tables/data for "
+                    "i4-bucket, harness/tables/data_sport for i4-sport)")
     ap.add_argument("--rpm", type=float, nargs="+", default=list(DEFAULT_RPMS), help="engine speeds [rpm]")
     ap.add_argument("--seed", type=int, default=DEFAULT_SEED, help=f"random seed (default {DEFAULT_SEED})")
     ap.add_argument("--quiet", action="store_true", help="do not print the summary")
 
 
 def run(args):
-    for p in write_tables(args.out, args.rpm, args.seed):
-        if not args.quiet:
-            print(p)
+    engine = valvetrain.ENGINES[args.engine]
+    written = write_tables(args.out, args.rpm, args.seed, engine)
     if not args.quiet:
-        print(summary(args.rpm))
-        for train in valvetrain.CAMSHAFTS:
-            print(f"{train.name}: contact force reaches zero (valve float) at {valvetrain.float_speed(train):.0f} rpm")
+        for p in written:
+            print(p)
+        print(f"engine {engine.name}: the model without artefacts")
+        print(summary(args.rpm, engine))
+        for train in engine.camshafts:
+            print(f"{train.name}: contact force reaches zero (valve float) at "
+                  f"{valvetrain.float_speed(train, engine):.0f} rpm")
+        print(f"\nwhat the tables in {written[0].parent} hold (artefacts included):\n")
+        print(files_table(written[0].parent, engine))
     return 0

@@ -9,8 +9,9 @@ record in seconds), then comma-separated numbers. Columns used here: `camshaftIn
 `camshaftExhaust.tau` [N m, positive opposing the camshaft rotation], `crankshaft.speed_rpm`
 [rpm] or `crankshaft.w` [rad/s]; other columns are kept.
 
-The tables shipped in harness/tables/data are SYNTHESIZED (harness/tables/make_tables.py), not
-measurements; real measurements in the same format are read the same way.
+The tables shipped in harness/tables/data (and the second engine's in harness/tables/data_sport,
+read with data_dir) are SYNTHESIZED (harness/tables/make_tables.py), not measurements; real
+measurements in the same format are read the same way.
 """
 import math
 import pathlib

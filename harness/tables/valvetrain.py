@@ -1,8 +1,18 @@
-"""Physical model behind the SYNTHESIZED "measured" tables of harness/tables/data: the valve-train
-load torque of the two camshafts and the crankshaft speed fluctuation of a four-cylinder
-four-stroke DOHC petrol engine. No measurement enters; every parameter below is an engineering
-estimate ([E]) or derived from one ([D]), with its reasoning, and harness/tables/data/README.md
-repeats them.
+"""Physical model behind the SYNTHESIZED "measured" tables of harness/tables/data and
+harness/tables/data_sport: the valve-train load torque of the two camshafts and the crankshaft
+speed fluctuation of a four-cylinder four-stroke DOHC petrol engine. No measurement enters; every
+parameter below is an engineering estimate ([E]) or derived from one ([D]), with its reasoning,
+and harness/tables/data/README.md repeats them.
+
+Each engine is one immutable `Engine`: firing order (and from it the firing TDCs), the intake
+and exhaust `ValveTrain`s, the `CrankSpeedModel`, the cam/bucket friction law and the camshaft
+drag law. Two are defined (ENGINES):
+* "i4-bucket" (I4_BUCKET, the default; tables in harness/tables/data): the engine described
+  below;
+* "i4-sport" (I4_SPORT; tables in harness/tables/data_sport): the same layout with another
+  engine's cams, springs, phasing and crank train, see "Engine i4-sport" at the end.
+The module-level INTAKE, EXHAUST, CAMSHAFTS, CRANK, FIRING_ORDER and FIRING_TDC_DEG are those of
+the default engine.
 
 SI units inside (m, N, kg, s, rad); angles given in degrees carry the suffix _deg. The public
 functions take the crank angle theta in degrees from cylinder 1 firing TDC, as the tables do.
@@ -83,16 +93,36 @@ highest about 75-80 deg after each firing TDC). They turn
 In complex form: delta(theta) = sum_k Re{-A_k H(r_k) exp(i k (theta - theta_p))}.
 A slight cylinder-to-cylinder imbalance adds orders 0.5, 1 and 1.5 with angle amplitudes
 0.08, 0.02 and 0.009 A_2 (a torque imbalance of 0.5 % of T_2) at fixed phases.
+
+Engine i4-sport
+---------------
+Another four-cylinder four-stroke DOHC engine with bucket tappets, firing order 1-3-4-2 (the
+solver's cycle statistics look at engine orders 2, 4, 6, 8), same laws as above; what differs
+(all [E]):
+* cams: valve lift 10.0 mm intake, 9.5 mm exhaust; main duration 260 / 252 deg crank (lash,
+  ramps and the polydyne family as i4-bucket);
+* phasing: the intake cam phaser holds the intake lobe centre 100 deg after gas-exchange TDC
+  (460 deg after firing TDC; intake main event 330-590), the exhaust lobe centre lies 105 deg
+  before it (255; exhaust main event 129-381): 10 deg earlier / 5 deg later than i4-bucket;
+* valve springs 280 N preload, 52 N/mm (800 N at full intake lift); effective moving masses
+  95 g intake, 88 g exhaust;
+* bucket 35 mm (tappet radius 17.5 mm): the largest contact offset is 15.7 mm, which a 33 mm
+  bucket would hold with only 0.8 mm to its edge, less than its edge chamfer (about 1 mm);
+* DLC-coated buckets: mu = 0.04 + 0.02 (1000 rpm / n); bearing and seal drag 0.8 N m + 0.10 N m
+  per 1000 rpm per camshaft;
+* crank train: order-2 angle amplitude 3.2 deg at 800 rpm (lighter flywheel), first torsional
+  mode at 330 Hz with damping ratio 0.04 (order 4 resonant at 4950 rpm, order 6 at 3300 rpm,
+  order 8 at 2475 rpm); gas-torque harmonics and imbalance as i4-bucket.
+Checks (tests/python/tables/test_tables.py): the cams stay convex for the flat follower
+(smallest radius of curvature 4.1 mm intake, 3.4 mm exhaust), no valve float at 1000-6000 rpm
+(contact force first zero at about 10300 rpm intake, 10400 rpm exhaust).
 """
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 DEG = math.pi / 180.0
-FIRING_ORDER = (1, 3, 4, 2)
-# firing TDC of each cylinder [deg crank after cylinder 1 firing TDC]
-FIRING_TDC_DEG = {cyl: 180.0 * i for i, cyl in enumerate(FIRING_ORDER)}
 
 
 def _smoothstep_velocity(s, v_r, l_a):
@@ -197,32 +227,26 @@ class ValveTrain:
     tappet_radius: float = 16.5e-3      # [E] bucket of 33 mm: must exceed the largest offset h_phi
     valves_per_cylinder: int = 2
 
-    def friction_coefficient(self, rpm):
-        """Cam/bucket friction [-]: mixed lubrication, falling with speed (Stribeck):
-        mu = 0.06 + 0.03 (1000 rpm / n); 0.09 at 1000 rpm, 0.065 at 6000 rpm [E]."""
-        return 0.06 + 0.03 * 1000.0 / rpm
+
+@dataclass(frozen=True)
+class FrictionLaw:
+    """Cam/bucket friction coefficient [-], mixed lubrication falling with speed (Stribeck):
+    mu(n) = base + low_speed (1000 rpm / n)."""
+    base: float
+    low_speed: float
+
+    def __call__(self, rpm):
+        return self.base + self.low_speed * 1000.0 / rpm
 
 
-INTAKE = ValveTrain(
-    name="camshaftIntake",
-    lobe=CamLobe(valve_lift=8.5e-3, lash=0.20e-3),
-    centre_after_firing_tdc_deg=470.0,
-    # [E] valve 40 g (about 33 mm head) + bucket with shim 22 g + retainer and keepers 6 g
-    # + one third of a 36 g spring 12 g
-    effective_mass=0.080,
-)
-EXHAUST = ValveTrain(
-    name="camshaftExhaust",
-    lobe=CamLobe(valve_lift=8.0e-3, lash=0.25e-3),  # [E] smaller exhaust valves, larger (hot) lash
-    centre_after_firing_tdc_deg=250.0,
-    effective_mass=0.075,                            # [E] valve 35 g, the rest as intake
-)
-CAMSHAFTS = (INTAKE, EXHAUST)
+@dataclass(frozen=True)
+class DragLaw:
+    """Mean camshaft bearing and seal drag per camshaft [N m]: base + per_1000rpm (n / 1000 rpm)."""
+    base: float
+    per_1000rpm: float
 
-
-def drag_torque(rpm):
-    """Mean camshaft bearing and seal drag per camshaft [N m]: 1.0 + 0.12 per 1000 rpm [E]."""
-    return 1.0 + 0.12 * rpm / 1000.0
+    def __call__(self, rpm):
+        return self.base + self.per_1000rpm * rpm / 1000.0
 
 
 @dataclass
@@ -248,8 +272,8 @@ class CrankSpeedModel:
     max_order: int = 40                    # even orders 2..40
     resonance_hz: float = 400.0            # [E] first crank torsional mode (300-500 Hz)
     resonance_damping: float = 0.03        # [E] damping ratio (crank with rubber damper, 0.02-0.05)
-    # cylinder imbalance: order -> (angle amplitude relative to A_2, phase [deg])
-    imbalance: dict = field(default_factory=lambda: {0.5: (0.08, 30.0), 1.0: (0.02, 120.0), 1.5: (0.009, 250.0)})
+    # [E] cylinder imbalance: (order, angle amplitude relative to A_2, phase [deg])
+    imbalance: tuple = ((0.5, 0.08, 30.0), (1.0, 0.02, 120.0), (1.5, 0.009, 250.0))
 
     def order2_amplitude_deg(self, rpm):
         """Rigid-body order-2 angle amplitude A_2(n) [deg]."""
@@ -267,7 +291,7 @@ class CrankSpeedModel:
         for k in range(2, self.max_order + 1, 2):
             out[float(k)] = -a2 * (2.0 / k) ** 3 * self.amplification(k, rpm) \
                 * np.exp(-1j * k * self.pulse_centre_deg * DEG)
-        for k, (rel, ph) in self.imbalance.items():
+        for k, rel, ph in self.imbalance:
             out[float(k)] = rel * a2 * self.amplification(k, rpm) * np.exp(1j * ph * DEG)
         return out
 
@@ -285,23 +309,127 @@ class CrankSpeedModel:
         return w0 * (1.0 + scale * d1), w0 * scale * d2
 
 
-CRANK = CrankSpeedModel()
+@dataclass(frozen=True)
+class Engine:
+    """Everything the tables of one engine depend on (see the module text)."""
+    name: str                          # the --engine choice
+    description: str                   # the layout, one line (the tables' `engine:` header line)
+    intake: ValveTrain
+    exhaust: ValveTrain
+    crank: CrankSpeedModel
+    friction: FrictionLaw              # cam/bucket friction coefficient mu(n)
+    drag: DragLaw                      # bearing and seal drag per camshaft [N m]
+    firing_order: tuple = (1, 3, 4, 2)
+
+    def __post_init__(self):
+        if sorted(self.firing_order) != list(range(1, len(self.firing_order) + 1)):
+            raise ValueError(f"engine {self.name}: firing order {self.firing_order} is not a permutation of the cylinders")
+
+    @property
+    def firing_tdc_deg(self):
+        """Firing TDC of each cylinder [deg crank after cylinder 1 firing TDC], evenly spaced over
+        the 720-deg cycle in the firing order."""
+        step = 720.0 / len(self.firing_order)
+        return {cyl: step * i for i, cyl in enumerate(self.firing_order)}
+
+    @property
+    def camshafts(self):
+        return (self.intake, self.exhaust)
 
 
-def camshaft_load(train, theta_deg, rpm, crank=CRANK, crank_scale=1.0):
-    """Load torque of one camshaft over theta [deg crank from cylinder 1 firing TDC] at the
-    engine speed rpm, with the valve inertia at the crank model's fluctuating speed."""
+I4_BUCKET = Engine(
+    name="i4-bucket",
+    description="4-cylinder 4-stroke DOHC, firing order 1-3-4-2, 2 intake + 2 exhaust valves per cylinder, "
+                "bucket tappets",
+    intake=ValveTrain(
+        name="camshaftIntake",
+        lobe=CamLobe(valve_lift=8.5e-3, lash=0.20e-3),
+        centre_after_firing_tdc_deg=470.0,
+        # [E] valve 40 g (about 33 mm head) + bucket with shim 22 g + retainer and keepers 6 g
+        # + one third of a 36 g spring 12 g
+        effective_mass=0.080,
+    ),
+    exhaust=ValveTrain(
+        name="camshaftExhaust",
+        lobe=CamLobe(valve_lift=8.0e-3, lash=0.25e-3),  # [E] smaller exhaust valves, larger (hot) lash
+        centre_after_firing_tdc_deg=250.0,
+        effective_mass=0.075,                            # [E] valve 35 g, the rest as intake
+    ),
+    crank=CrankSpeedModel(),
+    # [E] mixed lubrication: 0.09 at 1000 rpm, 0.065 at 6000 rpm
+    friction=FrictionLaw(base=0.06, low_speed=0.03),
+    # [E] five plain journal bearings and a front seal: 1.0 N m + 0.12 N m per 1000 rpm
+    drag=DragLaw(base=1.0, per_1000rpm=0.12),
+)
+
+I4_SPORT = Engine(
+    name="i4-sport",
+    description="4-cylinder 4-stroke DOHC, firing order 1-3-4-2, 2 intake + 2 exhaust valves per cylinder, "
+                "DLC-coated bucket tappets, intake cam phaser",
+    intake=ValveTrain(
+        name="camshaftIntake",
+        # [E] higher lift and a longer main event (260 deg crank); lash and ramps as i4-bucket
+        lobe=CamLobe(valve_lift=10.0e-3, lash=0.20e-3, main_duration_deg=260.0),
+        # [E] cam phaser position: lobe centre 100 deg after gas-exchange TDC (360 + 100)
+        centre_after_firing_tdc_deg=460.0,
+        # [E] valve 46 g (about 35 mm head) + bucket with shim 24 g + retainer and keepers 7 g
+        # + one third of a 54 g spring 18 g
+        effective_mass=0.095,
+        spring_preload=280.0,          # [E] N, installed
+        spring_rate=52.0e3,            # [E] N/m (52 N/mm), 800 N at 10.0 mm
+        # [E] bucket of 35 mm: the largest contact offset is 15.7 mm, so a 33 mm bucket (16.5 mm)
+        # would keep the contact only 0.8 mm from its edge, inside the edge chamfer (about 1 mm)
+        tappet_radius=17.5e-3,
+    ),
+    exhaust=ValveTrain(
+        name="camshaftExhaust",
+        # [E] 9.5 mm lift, 252 deg crank main event, larger (hot) lash
+        lobe=CamLobe(valve_lift=9.5e-3, lash=0.25e-3, main_duration_deg=252.0),
+        # [E] lobe centre 105 deg before gas-exchange TDC (360 - 105)
+        centre_after_firing_tdc_deg=255.0,
+        effective_mass=0.088,          # [E] valve 39 g, the rest as intake
+        spring_preload=280.0,          # [E] N, same springs as intake
+        spring_rate=52.0e3,            # [E] N/m, 774 N at 9.5 mm
+        tappet_radius=17.5e-3,         # [E] 35 mm, as intake (largest offset 15.4 mm)
+    ),
+    crank=CrankSpeedModel(
+        idle_amplitude_deg=3.2,        # [E] order-2 angle amplitude at 800 rpm (lighter flywheel)
+        resonance_hz=330.0,            # [E] first crank torsional mode, low in the 300-500 Hz range
+        resonance_damping=0.04,        # [E] damping ratio (crank with a viscous-rubber damper)
+    ),
+    # [E] DLC-coated buckets: 0.06 at 1000 rpm, 0.043 at 6000 rpm
+    friction=FrictionLaw(base=0.04, low_speed=0.02),
+    # [E] plain journal bearings and a low-friction front seal: 0.8 N m + 0.10 N m per 1000 rpm
+    drag=DragLaw(base=0.8, per_1000rpm=0.10),
+)
+
+ENGINES = {e.name: e for e in (I4_BUCKET, I4_SPORT)}
+DEFAULT_ENGINE = I4_BUCKET
+
+# the default engine's parts
+FIRING_ORDER = I4_BUCKET.firing_order
+FIRING_TDC_DEG = I4_BUCKET.firing_tdc_deg   # [deg crank after cylinder 1 firing TDC]
+INTAKE = I4_BUCKET.intake
+EXHAUST = I4_BUCKET.exhaust
+CAMSHAFTS = I4_BUCKET.camshafts
+CRANK = I4_BUCKET.crank
+
+
+def camshaft_load(train, theta_deg, rpm, engine=DEFAULT_ENGINE, crank_scale=1.0):
+    """Load torque of one camshaft (a ValveTrain of `engine`) over theta [deg crank from
+    cylinder 1 firing TDC] at the engine speed rpm, with the valve inertia at the engine's crank
+    model's fluctuating speed (its fluctuation times crank_scale)."""
     theta_deg = np.asarray(theta_deg, float)
-    omega, domega = crank.speed(theta_deg, rpm, crank_scale)
+    omega, domega = engine.crank.speed(theta_deg, rpm, crank_scale)
     w_c = 0.5 * omega
     alpha_c = 0.5 * omega * domega
     lobe = train.lobe
-    mu = train.friction_coefficient(rpm)
+    mu = engine.friction(rpm)
     spring = np.zeros_like(theta_deg)
     inertia = np.zeros_like(theta_deg)
     friction = np.zeros_like(theta_deg)
     fmin, separated, offset = math.inf, 0, 0.0
-    for cyl, tdc in FIRING_TDC_DEG.items():
+    for cyl, tdc in engine.firing_tdc_deg.items():
         centre = tdc + train.centre_after_firing_tdc_deg
         rel = (theta_deg - centre + 360.0) % 720.0 - 360.0   # crank deg from the lobe centre
         h, h1, h2 = lobe.lift(0.5 * rel * DEG)
@@ -321,20 +449,20 @@ def camshaft_load(train, theta_deg, rpm, crank=CRANK, crank_scale=1.0):
         inertia += n * f_inertia_c * h1
         friction += n * mu * (f_spring_c + f_inertia_c) * (train.base_radius + h)
         offset = max(offset, float(np.max(np.abs(h1))))
-    drag = drag_torque(rpm)
+    drag = engine.drag(rpm)
     return CamshaftLoad(theta_deg, spring + inertia + friction + drag, spring, inertia, friction, drag,
                         fmin, separated, offset)
 
 
-def float_speed(train, crank=CRANK, lo=1000.0, hi=20000.0):
-    """Lowest engine speed [rpm] at which the contact force of `train` reaches zero (bisection
-    on a 0.25 deg grid, with the crank model's fluctuation)."""
+def float_speed(train, engine=DEFAULT_ENGINE, lo=1000.0, hi=20000.0):
+    """Lowest engine speed [rpm] at which the contact force of `train` (a ValveTrain of
+    `engine`) reaches zero (bisection on a 0.25 deg grid, with the engine's crank fluctuation)."""
     theta = np.arange(0.0, 720.0, 0.25)
-    if camshaft_load(train, theta, hi, crank).min_contact_force > 0.0:
+    if camshaft_load(train, theta, hi, engine).min_contact_force > 0.0:
         return math.inf
     for _ in range(40):
         mid = 0.5 * (lo + hi)
-        if camshaft_load(train, theta, mid, crank).min_contact_force > 0.0:
+        if camshaft_load(train, theta, mid, engine).min_contact_force > 0.0:
             lo = mid
         else:
             hi = mid
