@@ -178,7 +178,9 @@ case "${1:-}" in
     echo "== the FMUs for download (dist/)"
     "$VENV/bin/python" -m harness package
     echo "== Python tests"
-    "$VENV/bin/python" -m pytest -q tests/python "$@"
+    # the span model's calibrations (src/span/calibration_cache.h) kept beside the build, as ctest's
+    CHAINDRIVE_CACHE_DIR="${CHAINDRIVE_CACHE_DIR:-$CHAINDRIVE_BUILD/calibration-cache}" \
+      "$VENV/bin/python" -m pytest -q tests/python "$@"
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
       (sanitizer_stage)
     fi

@@ -1,6 +1,7 @@
 // chaindrive-info: assembles a drive and prints the assembly report; optionally writes the
 // geometry (sprocket outlines, guide faces, chain path, pins) as JSON for plots.
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 #include "description/drive_description.h"
 #include "assembly/model.h"
 #include "run/defaults.h"
+#include "span/calibration_cache.h"
 
 using namespace chaindrive;
 
@@ -20,9 +22,12 @@ constexpr const char* kTool = "chaindrive-info";
 
 void usage() {
   std::puts(
-      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--quiet] | --defaults\n"
+      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--calibrate] [--quiet] | --defaults\n"
       "  Assembles the drive (default: the embedded default drive), prints the closure and pose\n"
       "  report, and optionally writes the geometry for plotting.\n"
+      "  --calibrate calibrates the drive's span model from its link model's statics (or takes the\n"
+      "  calibration from the cache, src/span/calibration_cache.h) and prints what it identified, its\n"
+      "  cost and its cache file.\n"
       "  --defaults prints the solver defaults of every entry point per scene and fidelity as JSON\n"
       "  (the one table, src/run/defaults.h: method, step [s], tolerance).");
 }
@@ -31,6 +36,7 @@ struct InfoArguments {
   std::string drive, geometry;
   bool quiet = false;
   bool defaults = false;  // print the defaults table instead
+  bool calibrate = false;  // calibrate the span model and print the calibration
 };
 
 // The options in any order (an option without its value is an unknown argument); -h/--help ends
@@ -43,6 +49,7 @@ InfoArguments parseArguments(cli::Arguments& args) {
     else if (a == "--geometry" && args.hasValue()) r.geometry = args.value();
     else if (a == "--quiet") r.quiet = true;
     else if (a == "--defaults") r.defaults = true;
+    else if (a == "--calibrate") r.calibrate = true;
     else throw std::invalid_argument("unknown argument '" + a + "'");
   }
   return r;
@@ -160,6 +167,19 @@ void writeGeometry(const Model& m, const std::string& path) {
   std::ofstream(path) << g.dump(1) << "\n";
 }
 
+// The span model's calibration: its notes (laws, residuals, cost, cache file).
+void printCalibration(const Model& m) {
+  span::SpanModel sm = span::assembleSpanModel(m, false);
+  const double wall0 = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  bool fromCache = false;
+  std::string file;
+  span::calibrateSpanModel(sm, &fromCache, &file);
+  const double cpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC - wall0;
+  for (const std::string& note : sm.notes)
+    if (note.rfind("calibration: ", 0) == 0) std::printf("%s\n", note.c_str());
+  std::printf("calibration: this call took %.2f s CPU (%s)\n", cpu, fromCache ? "read from the cache" : "identified");
+}
+
 // The defaults table as {scene: {fidelity: {method, step_s, tolerance}}}.
 void printDefaults() {
   nlohmann::json table = nlohmann::json::object();
@@ -178,6 +198,7 @@ int run(const InfoArguments& r) {
   const Model m = assemble(desc);
   if (!r.quiet) printReport(m);
   if (!r.geometry.empty()) writeGeometry(m, r.geometry);
+  if (r.calibrate) printCalibration(m);
   return 0;
 }
 

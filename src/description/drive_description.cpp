@@ -483,6 +483,7 @@ DriveDescription parseDriveDescription(std::string_view text) {
   defaultClosure(desc, problems);
   checkClosureInRoute(desc, problems);
   if (!problems.empty()) throw DescriptionError(problems);
+  desc.canonicalText = root.dump();  // keys sorted, no white space: the same text for the same content
   return desc;
 }
 

@@ -148,6 +148,7 @@ struct DriveDescription {
   ContactDesc contact;
   std::optional<ClosureDesc> closure;  // default: the tensioner's guide
   MeasurementDesc measurement;
+  std::string canonicalText;     // the description as parsed, in one canonical JSON form (a cache key's part)
 
   int sprocketIndex(std::string_view name) const;  // -1 if none
   int guideIndex(std::string_view name) const;     // -1 if none

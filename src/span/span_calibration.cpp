@@ -1,62 +1,223 @@
 #include "span/span_calibration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <string>
+#include <ctime>
+#include <stdexcept>
 
+#include <Eigen/Dense>
+
+#include "dynamics/dynamics.h"
+#include "dynamics/joint_forces.h"
 #include "statics/preload.h"
+#include "span/span_dynamics.h"
 #include "span/span_system.h"
 
 namespace chaindrive::span {
 
 namespace {
 
-// The span model's static guide angle at rest without loads, with `slack` in span i.
-double staticGuideAngle(SpanModel& sm, int span, double slack, int rotor, const InputValues& rest) {
-  sm.spans[span].slack = slack;
-  PreloadReport report;
-  const std::vector<double> y = spanInitialState(sm, rest, PreloadOptions{}, report);
-  if (!report.converged) throw std::runtime_error("span model: " + report.message);
-  return y[sm.stateAngle[rotor]];
+constexpr double kMinTension = 30.0;  // [N] a nearly slack span sags: its stretch is no law's
+// load torques on every free sprocket [N m] and supply pressures of a hydraulic chamber [Pa]
+constexpr double kLoads[] = {-5.0, 0.0, 5.0, 10.0, 20.0, 40.0};
+constexpr double kSupplies[] = {1e5, 3e5, 10e5, 20e5, 35e5};
+constexpr int kNodes = 6;             // law nodes
+
+// The link model's span tensions at its state y: the mean joint tension over the links on each
+// span's free parts and guides (what the span's spring holds), located by their path positions
+// at the start (statics move the chain along the path by far less than a pitch).
+std::vector<double> linkSpanTensions(const SpanModel& sm, const std::vector<double>& yLink, const InputValues& in) {
+  const Model& m = *sm.links;
+  Data d(m);
+  HeldInputs held(m);
+  held.values = in;
+  generalizedForces(m, d, held, 0.0, yLink.data());
+  measureJoints(m, d);
+  std::vector<double> sum(sm.spans.size(), 0.0), count(sm.spans.size(), 0.0);
+  for (int j = 0; j < m.chain.links; ++j) {
+    const PathPart& part = sm.pathParts[m.path.segmentAt(sm.monitoredStart[j])];
+    if (part.kind == PathPart::Kind::Sprocket) continue;
+    sum[part.span] += d.joints.tension[j];
+    count[part.span] += 1.0;
+  }
+  for (std::size_t i = 0; i < sum.size(); ++i) sum[i] = count[i] > 0.0 ? sum[i] / count[i] : 0.0;
+  return sum;
+}
+
+// The span model at a static pose of the link model with the link model's span tensions: the
+// spans' stretches there and, per pivoting guide, the ratio of the chain torque the link model's
+// equilibrium needs to the one the span model's table gives.
+void spanAtPose(const SpanModel& sm, const std::vector<double>& yLink, const InputValues& in,
+                const std::vector<double>& tension, std::vector<double>& stretch, std::vector<double>& leverRatio) {
+  const Model& m = *sm.links;
+  std::vector<double> y = nominalSpanState(sm, in.crankSpeed);
+  for (std::size_t r = 0; r < m.rotors.size(); ++r) y[sm.stateAngle[r]] = yLink[m.rotors[r].stateAngle];
+  if (sm.stateChamberPressure >= 0) y[sm.stateChamberPressure] = yLink[m.stateChamberPressure];
+  SpanData d(sm);
+  d.quasiStatic = true;
+  d.prescribedTension = tension;
+  HeldInputs held(m);
+  held.values = in;
+  evaluateSpanForces(sm, d, held, 0.0, y.data());
+  stretch.resize(sm.spans.size());
+  for (std::size_t i = 0; i < sm.spans.size(); ++i) stretch[i] = d.spans[i].stretch;
+  leverRatio.clear();
+  for (const GuideTable& t : sm.tables)  // rotorGen = chain + the rest: 0 with the chain's torque scaled
+    leverRatio.push_back(1.0 - d.rotorGen[t.rotor] / d.chainTorque[t.rotor]);
+}
+
+// The law through the poses' (tension, stretch) of one span: the stretch a piecewise-linear
+// function of the tension, by least squares, with knots equally spaced from the smallest to the
+// largest tension (at most kNodes; a knot whose segment would hold fewer than three poses is
+// dropped); its nodes are the stretches at the knots. The residuals go into rms and largest.
+EngagementLaw fitLaw(const std::vector<double>& T, const std::vector<double>& e, double& rms, double& largest) {
+  const double lo = *std::min_element(T.begin(), T.end()), hi = *std::max_element(T.begin(), T.end());
+  std::vector<double> knots = {lo};
+  for (int k = 1; k < kNodes; ++k) {
+    const double next = lo + (hi - lo) * k / (kNodes - 1);
+    const auto held = std::count_if(T.begin(), T.end(), [&](double t) { return t > knots.back() && t <= next; });
+    if (held >= 3 || k == kNodes - 1) knots.push_back(next);
+  }
+  const int nk = static_cast<int>(knots.size()), np = static_cast<int>(T.size());
+  // columns: 1, T, and a ramp max(T - knot, 0) per inner knot; tensions in kN keep it well scaled
+  auto basis = [&](double t, int c) {
+    return c == 0 ? 1.0 : c == 1 ? t * 1e-3 : std::max(t - knots[c - 1], 0.0) * 1e-3;
+  };
+  Eigen::MatrixXd A(np, nk);
+  Eigen::VectorXd b(np);
+  for (int p = 0; p < np; ++p) {
+    for (int c = 0; c < nk; ++c) A(p, c) = basis(T[p], c);
+    b[p] = e[p];
+  }
+  // a ridge on the slope changes: the stretch depends a little on the neighbouring spans' tensions
+  // too, and the fit shall not turn that scatter into wiggles of the stiffness (a change of
+  // 100 um/kN costs as much as 10 um off the law at every pose)
+  Eigen::MatrixXd ridge = Eigen::MatrixXd::Zero(nk, nk);
+  for (int c = 2; c < nk; ++c) ridge(c, c) = 0.01 * np;
+  const Eigen::VectorXd x = (A.transpose() * A + ridge).ldlt().solve(A.transpose() * b);
+  const Eigen::VectorXd r = A * x - b;
+  rms = std::sqrt(r.squaredNorm() / np);
+  largest = r.cwiseAbs().maxCoeff();
+  EngagementLaw law;
+  for (double t : knots) {
+    double s = 0.0;
+    for (int c = 0; c < nk; ++c) s += x[c] * basis(t, c);
+    law.stretch.push_back(s);
+    law.tension.push_back(t);
+  }
+  for (std::size_t k = 1; k < law.stretch.size(); ++k)
+    if (!(law.stretch[k] > law.stretch[k - 1]))
+      throw std::runtime_error("span calibration: the stretch does not grow with the tension between " +
+                               std::to_string(law.tension[k - 1]) + " and " + std::to_string(law.tension[k]) + " N");
+  law.energy.assign(law.stretch.size(), 0.0);
+  for (std::size_t k = 1; k < law.stretch.size(); ++k)
+    law.energy[k] = law.energy[k - 1] +
+                    0.5 * (law.tension[k] + law.tension[k - 1]) * (law.stretch[k] - law.stretch[k - 1]);
+  return law;
+}
+
+// The loads of pose `code`: a load of kLoads on each free sprocket (digits of code in base 4)
+// and a supply pressure.
+InputValues poseInputs(const Model& m, const std::vector<int>& loaded, int code, double supply) {
+  InputValues in;
+  in.loadTorque.assign(m.rotors.size(), 0.0);
+  const int nLoads = static_cast<int>(sizeof kLoads / sizeof kLoads[0]);
+  for (int r : loaded) {
+    in.loadTorque[r] = kLoads[code % nLoads];
+    code /= nLoads;
+  }
+  in.supplyPressure = supply;
+  return in;
 }
 
 }  // namespace
 
-void measureSeatingSlack(SpanModel& sm) {
+SpanCalibration identifySpanLaws(const SpanModel& sm) {
+  const std::clock_t t0 = std::clock();
   const Model& m = *sm.links;
-  if (!m.tensioner.present || m.rotors[m.tensioner.rotor].isSprocket) {
-    sm.notes.push_back("seating slack: not measured (no tensioned pivoting guide)");
-    return;
+  std::vector<int> loaded;
+  for (std::size_t r = 0; r < m.rotors.size(); ++r)
+    if (m.rotors[r].isSprocket && !m.rotors[r].prescribed) loaded.push_back(static_cast<int>(r));
+  std::vector<double> supplies = {m.tensioner.hydraulic.supplyPressure};
+  if (m.tensioner.hydraulicChamber()) supplies.assign(std::begin(kSupplies), std::end(kSupplies));
+  int combos = 1;
+  for (std::size_t k = 0; k < loaded.size(); ++k) combos *= static_cast<int>(sizeof kLoads / sizeof kLoads[0]);
+  const std::size_t ns = sm.spans.size();
+  std::vector<std::vector<double>> T(ns), e(ns);
+  SpanCalibration c;
+  c.leverRatioMin.assign(sm.tables.size(), 1e300);
+  c.leverRatioMax.assign(sm.tables.size(), -1e300);
+  std::vector<double> previous;  // the last pose solved: the next solve starts there
+  for (double supply : supplies)
+    for (int code = 0; code < combos; ++code) {
+      const InputValues in = poseInputs(m, loaded, code, supply);
+      PreloadReport report;
+      std::vector<double> yLink;
+      try {
+        yLink = initialState(m, in, PreloadOptions{}, report, previous.empty() ? nullptr : &previous);
+      } catch (const std::runtime_error&) {
+        report.converged = false;
+      }
+      if (report.converged) previous = yLink;
+      const std::vector<double> tension = report.converged ? linkSpanTensions(sm, yLink, in) : std::vector<double>{};
+      if (tension.empty() || *std::min_element(tension.begin(), tension.end()) < kMinTension) {
+        ++c.posesRejected;
+        continue;
+      }
+      std::vector<double> stretch, ratio;
+      spanAtPose(sm, yLink, in, tension, stretch, ratio);
+      for (std::size_t i = 0; i < ns; ++i) {
+        T[i].push_back(tension[i]);
+        e[i].push_back(stretch[i]);
+      }
+      for (std::size_t g = 0; g < ratio.size(); ++g) {
+        c.leverRatioMin[g] = std::min(c.leverRatioMin[g], ratio[g]);
+        c.leverRatioMax[g] = std::max(c.leverRatioMax[g], ratio[g]);
+      }
+      ++c.poses;
+    }
+  if (c.poses < 2 * kNodes)
+    throw std::runtime_error("span calibration: " + std::to_string(c.poses) + " static poses of the link model " +
+                             "converged with every span in tension; the fit needs " + std::to_string(2 * kNodes));
+  c.residualRms.resize(ns);
+  c.residualMax.resize(ns);
+  for (std::size_t i = 0; i < ns; ++i) c.laws.push_back(fitLaw(T[i], e[i], c.residualRms[i], c.residualMax[i]));
+  c.cpuSeconds = static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
+  return c;
+}
+
+void applyCalibration(SpanModel& sm, const SpanCalibration& c) {
+  for (std::size_t i = 0; i < sm.spans.size(); ++i) sm.spans[i].engagement = c.laws[i];
+}
+
+std::vector<std::string> describeCalibration(const SpanModel& sm, const SpanCalibration& c) {
+  std::vector<std::string> lines;
+  char line[400];
+  std::snprintf(line, sizeof line, "engagement laws from %d static poses of the link model (%d rejected) in %.2f s CPU",
+                c.poses, c.posesRejected, c.cpuSeconds);
+  lines.push_back(line);
+  for (std::size_t i = 0; i < sm.spans.size(); ++i) {
+    const EngagementLaw& law = c.laws[i];
+    std::string nodes;
+    for (std::size_t k = 0; k < law.stretch.size(); ++k) {
+      char node[64];
+      std::snprintf(node, sizeof node, "%s%.0f N at %.4f mm", k ? ", " : "", law.tension[k], law.stretch[k] * 1e3);
+      nodes += node;
+    }
+    const std::size_t n = law.stretch.size();
+    const double top = (law.stretch[n - 1] - law.stretch[n - 2]) / (law.tension[n - 1] - law.tension[n - 2]);
+    std::snprintf(line, sizeof line, "span %s: %s; compliance at the top %.0f um/kN (joints in series %.0f); "
+                  "stretch off the law %.1f um rms, %.1f um largest", sm.spans[i].name.c_str(), nodes.c_str(),
+                  top * 1e9, 1e9 / sm.spans[i].stiffness, c.residualRms[i] * 1e6, c.residualMax[i] * 1e6);
+    lines.push_back(line);
   }
-  const int rotor = m.tensioner.rotor;
-  int span = -1;
-  for (std::size_t i = 0; i < sm.spans.size(); ++i)
-    if (sm.spans[i].table >= 0 && sm.tables[sm.spans[i].table].rotor == rotor) span = static_cast<int>(i);
-  if (span < 0) return;
-  // the link model's static guide angle at rest without loads
-  InputValues rest;
-  rest.loadTorque.assign(m.rotors.size(), 0.0);
-  rest.supplyPressure = m.tensioner.hydraulic.supplyPressure;
-  PreloadReport linkReport;
-  const std::vector<double> yLink = initialState(m, rest, PreloadOptions{}, linkReport);
-  const double target = yLink[m.rotors[rotor].stateAngle];
-  // secant iterations on the slack
-  double s0 = 0.0, s1 = 1e-4;
-  double f0 = staticGuideAngle(sm, span, s0, rotor, rest) - target;
-  double f1 = staticGuideAngle(sm, span, s1, rotor, rest) - target;
-  for (int it = 0; it < 30 && std::fabs(f1) > 1e-9 && f1 != f0; ++it) {
-    const double s2 = s1 - f1 * (s1 - s0) / (f1 - f0);
-    s0 = s1;
-    f0 = f1;
-    s1 = s2;
-    f1 = staticGuideAngle(sm, span, s1, rotor, rest) - target;
+  for (std::size_t g = 0; g < sm.tables.size(); ++g) {
+    std::snprintf(line, sizeof line, "guide '%s': the link model's chain torque over the span model's %.4f to %.4f",
+                  sm.links->rotors[sm.tables[g].rotor].name.c_str(), c.leverRatioMin[g], c.leverRatioMax[g]);
+    lines.push_back(line);
   }
-  sm.spans[span].slack = s1;
-  char line[200];
-  std::snprintf(line, sizeof line, "seating slack %.4f mm in span %s: the tension guide at %.4f deg at rest, as in "
-                "the link model (residual %.1e deg)", s1 * 1e3, sm.spans[span].name.c_str(),
-                m.rotorOutputSign[rotor] * target * 57.29577951308232, f1 * 57.29577951308232);
-  sm.notes.push_back(line);
+  return lines;
 }
 
 }  // namespace chaindrive::span

@@ -61,28 +61,47 @@ void rotorKinematics(const SpanModel& m, SpanData& d, const double* y) {
   }
 }
 
-// Stretch, tension and its distribution over the guides of span i; the torques on its end
-// sprockets and on its pivoting guide; the power its damper and guide friction dissipate.
-void evaluateSpan(const SpanModel& m, SpanData& d, int i) {
+// Stretch of span i and its rate; the end sprockets' effective radii and the guide table's
+// torque coefficients for its loads.
+void spanKinematics(const SpanModel& m, SpanData& d, int i) {
   const Model& lm = *m.links;
   const Span& sp = m.spans[i];
   SpanState& st = d.spans[i];
   const double sense = lm.sense;
   const double thA = sense * (d.rotorAngle[sp.from.rotor] - lm.rotors[sp.from.rotor].initialAngle);
   const double thB = sense * (d.rotorAngle[sp.to.rotor] - lm.rotors[sp.to.rotor].initialAngle);
-  double rA, rB;
-  const double sA = chainPassed(sp.from, thA, rA), sB = chainPassed(sp.to, thB, rB);
-  st.speedFrom = rA * sense * d.rotorRate[sp.from.rotor];
-  st.speedTo = rB * sense * d.rotorRate[sp.to.rotor];
+  const double sA = chainPassed(sp.from, thA, st.radiusFrom), sB = chainPassed(sp.to, thB, st.radiusTo);
+  st.speedFrom = st.radiusFrom * sense * d.rotorRate[sp.from.rotor];
+  st.speedTo = st.radiusTo * sense * d.rotorRate[sp.to.rotor];
   TableValue g{sp.length0, 0.0, 0.0, 0.0};
-  int guideRotor = -1;
-  if (sp.table >= 0) {
-    guideRotor = m.tables[sp.table].rotor;
-    g = lookUp(m.tables[sp.table], d.rotorAngle[guideRotor]);
+  if (sp.table >= 0) g = lookUp(m.tables[sp.table], d.rotorAngle[m.tables[sp.table].rotor]);
+  st.guideTorqueIn = g.torqueIn;
+  st.guideTorqueOut = g.torqueOut;
+  st.stretch = g.length - sp.length0 - (sA - sB);
+  st.stretchRate = (sp.table >= 0 ? g.slope * d.rotorRate[m.tables[sp.table].rotor] : 0.0) -
+                   (st.speedFrom - st.speedTo);
+}
+
+// The spans' spring tensions: the engagement laws (span_calibration.h), the joints' in series
+// without one, or prescribed (identification).
+void springTensions(const SpanModel& m, SpanData& d) {
+  for (std::size_t i = 0; i < m.spans.size(); ++i) {
+    const Span& sp = m.spans[i];
+    SpanState& st = d.spans[i];
+    const double spring = !d.prescribedTension.empty() ? d.prescribedTension[i]
+                          : sp.engagement.empty()       ? sp.stiffness * st.stretch
+                                                        : sp.engagement.tensionAt(st.stretch);
+    st.tension = spring + (d.quasiStatic ? 0.0 : sp.damping * st.stretchRate);
   }
-  st.stretch = g.length - sp.length0 - sp.slack - (sA - sB);
-  st.stretchRate = (guideRotor >= 0 ? g.slope * d.rotorRate[guideRotor] : 0.0) - (st.speedFrom - st.speedTo);
-  st.tension = sp.stiffness * st.stretch + (d.quasiStatic ? 0.0 : sp.damping * st.stretchRate);
+}
+
+// The tension's distribution over the guides of span i; the torques on its end sprockets and on
+// its pivoting guide; the power its damper and guide friction dissipate.
+void spanLoads(const SpanModel& m, SpanData& d, int i) {
+  const Model& lm = *m.links;
+  const Span& sp = m.spans[i];
+  SpanState& st = d.spans[i];
+  const double sense = lm.sense;
   // the tension above the centrifugal part grows over each guide by its capstan factor; the
   // spring holds the length-weighted mean
   st.speed = 0.5 * (st.speedFrom + st.speedTo);
@@ -97,15 +116,16 @@ void evaluateSpan(const SpanModel& m, SpanData& d, int i) {
   st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * sp.partsLength / weighted;
   st.tensionTo = st.partTension(static_cast<int>(sp.parts.size()) - 1);
   // sprockets: the chain pulls the leaving end forwards, the arriving end backwards
-  d.chainTorque[sp.from.rotor] += sense * st.tensionFrom * rA;
-  d.chainTorque[sp.to.rotor] -= sense * st.tensionTo * rB;
+  d.chainTorque[sp.from.rotor] += sense * st.tensionFrom * st.radiusFrom;
+  d.chainTorque[sp.to.rotor] -= sense * st.tensionTo * st.radiusTo;
   d.powerDissipated += d.quasiStatic ? 0.0 : sp.damping * st.stretchRate * st.stretchRate;
   for (std::size_t k = 0; k + 1 < sp.parts.size(); ++k)
     d.powerDissipated += (st.partTension(static_cast<int>(k) + 1) - st.partTension(static_cast<int>(k))) * st.speed;
-  if (guideRotor >= 0) {
+  if (sp.table >= 0) {
     const int k = sp.tableGuide;
     const double over = st.tensionFrom - st.centrifugal;
-    d.chainTorque[guideRotor] += g.torqueIn * over * st.factor[k] + g.torqueOut * over * st.factor[k + 1];
+    d.chainTorque[m.tables[sp.table].rotor] += st.guideTorqueIn * over * st.factor[k] +
+                                               st.guideTorqueOut * over * st.factor[k + 1];
   }
 }
 
@@ -117,7 +137,10 @@ void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, 
   rotorKinematics(m, d, y);
   std::fill(d.chainTorque.begin(), d.chainTorque.end(), 0.0);
   d.powerInput = d.powerDissipated = 0.0;
-  for (std::size_t i = 0; i < m.spans.size(); ++i) evaluateSpan(m, d, static_cast<int>(i));
+  const int n = static_cast<int>(m.spans.size());
+  for (int i = 0; i < n; ++i) spanKinematics(m, d, i);
+  springTensions(m, d);
+  for (int i = 0; i < n; ++i) spanLoads(m, d, i);
   d.rotorGen = d.chainTorque;  // same size: no allocation
   TensionerResult t0;
   d.chamber.pressure = m.stateChamberPressure >= 0 ? y[m.stateChamberPressure] : 0.0;
@@ -148,8 +171,11 @@ EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {
   const Model& lm = *m.links;
   for (std::size_t r = 0; r < lm.rotors.size(); ++r)
     if (m.stateRate[r] >= 0) e.kinetic += 0.5 * m.rotorInertia[r] * d.rotorRate[r] * d.rotorRate[r];
-  for (std::size_t i = 0; i < m.spans.size(); ++i)
-    e.elastic += 0.5 * m.spans[i].stiffness * d.spans[i].stretch * d.spans[i].stretch;
+  for (std::size_t i = 0; i < m.spans.size(); ++i) {
+    const Span& sp = m.spans[i];
+    const double stretch = d.spans[i].stretch;
+    e.elastic += sp.engagement.empty() ? 0.5 * sp.stiffness * stretch * stretch : sp.engagement.energyAt(stretch);
+  }
   if (lm.tensioner.present) {
     const int r = lm.tensioner.rotor;
     ChamberState oil = d.chamber;

@@ -19,6 +19,8 @@ struct SpanState {
   double speed = 0.0;          // [m/s] chain speed, mean of the two ends' R cos(theta_rel) omega
   double centrifugal = 0.0;    // [N] rho v^2
   double speedFrom = 0.0, speedTo = 0.0;  // [m/s] chain speed at the leaving and arriving ends
+  double radiusFrom = 0.0, radiusTo = 0.0;  // [m] effective radii R cos(theta_rel) of the ends
+  double guideTorqueIn = 0.0, guideTorqueOut = 0.0;  // [m] its pivoting guide's table coefficients
   std::vector<double> factor;  // (free parts) capstan factor of (T - rho v^2) relative to the first part
   double tensionFrom = 0.0, tensionTo = 0.0;  // [N] where the chain leaves A / arrives on B
   double partTension(int part) const { return centrifugal + (tensionFrom - centrifugal) * factor[part]; }
@@ -27,6 +29,7 @@ struct SpanState {
 struct SpanData {
   explicit SpanData(const SpanModel& m);
   bool quasiStatic = false;            // the static preload: springs without damping
+  std::vector<double> prescribedTension;  // (spans) spring tensions instead of the laws' (identification); empty
   InputValues inputs;
   std::vector<double> rotorAngle, rotorRate, rotorCos, rotorSin;  // (rotors) math sense
   std::vector<double> chainTorque;     // (rotors) [N m] of the chain on the rotor, math sense

@@ -1,6 +1,6 @@
 #include "span/span_model.h"
 
-#include "span/span_calibration.h"
+#include "span/calibration_cache.h"
 #include "math/elementary.h"
 
 #include <cmath>
@@ -64,30 +64,141 @@ double referenceLength(const ChainPath& path, const ChainPath& ref, int a, int b
   return len;
 }
 
-Vec2 runningTangent(double polarAngle, double signedRadius) {
-  const double sg = signedRadius > 0.0 ? 1.0 : -1.0;
-  return sg * Vec2{-math::sin(polarAngle), math::cos(polarAngle)};
+// A guide's face where the chain runs over it: polar angles of its ends about the path circle's
+// centre (assembled pose, counterclockwise from start to end) and the pitch line's height over the
+// face; present only for a convex arc face whose centre is the path circle's.
+struct GuideFace {
+  bool present = false;
+  double start = 0.0, end = 0.0;  // [rad]
+  Vec2 faceStart, faceEnd;        // [m] face ends, drawn pose
+  double height = 0.0;            // [m]
+};
+
+GuideFace guideFace(const GuideDesc& gd, Vec2 pivot, double assembledAngle, const RouteCircle& c) {
+  GuideFace f;
+  for (const GuideFeatureDesc& ft : gd.profile) {
+    const Vec2 center = pivot + rotate(ft.center - pivot, assembledAngle);
+    if (ft.type != GuideFeatureDesc::Type::Arc || !ft.convex || norm(center - c.center) > 1e-9 * ft.radius) continue;
+    f.present = true;
+    f.start = ft.startAngle + assembledAngle;
+    f.end = ft.endAngle + assembledAngle;
+    f.faceStart = center + ft.radius * unit(f.start);
+    f.faceEnd = center + ft.radius * unit(f.end);
+    f.height = std::fabs(c.signedRadius) - ft.radius;
+  }
+  return f;
+}
+
+// Whether polar angle a (assembled pose) lies on the face.
+bool onFace(const GuideFace& f, double a) {
+  double span = f.end - f.start, rel = a - f.start;
+  span -= 2.0 * kPi * std::floor(span / (2.0 * kPi));
+  rel -= 2.0 * kPi * std::floor(rel / (2.0 * kPi));
+  return rel <= span;
+}
+
+// A circle the chain runs on between two sprockets; `junction`: the chain passes from it to the
+// next circle at polar angle junctionAngle without a free line (a guide's face and the corner at
+// its end, both touching there).
+struct RunCircle {
+  RouteCircle c;
+  bool junction = false;
+  double junctionAngle = 0.0;
+};
+
+// Polar angles where the chain leaves each circle (departure) and arrives on it (arrival), and
+// the free lines' lengths; false when two circles have no common tangent.
+bool runTangents(const std::vector<RunCircle>& run, std::vector<double>& departure, std::vector<double>& arrival,
+                 std::vector<double>& freeLength) {
+  const std::size_t k = run.size();
+  departure.assign(k, 0.0);
+  arrival.assign(k, 0.0);
+  freeLength.assign(k, 0.0);
+  for (std::size_t i = 0; i + 1 < k; ++i) {
+    if (run[i].junction) {
+      departure[i] = arrival[i + 1] = run[i].junctionAngle;
+      continue;
+    }
+    Vec2 m;
+    if (!commonTangent(run[i].c, run[i + 1].c, m)) return false;
+    const double si = run[i].c.signedRadius > 0.0 ? 1.0 : -1.0, sj = run[i + 1].c.signedRadius > 0.0 ? 1.0 : -1.0;
+    departure[i] = angleOf(si * m);
+    arrival[i + 1] = angleOf(sj * m);
+    freeLength[i] = norm(run[i + 1].c.center + run[i + 1].c.signedRadius * m - run[i].c.center - run[i].c.signedRadius * m);
+  }
+  return true;
+}
+
+Vec2 pointAt(const RouteCircle& c, double polarAngle) { return c.center + std::fabs(c.signedRadius) * unit(polarAngle); }
+
+// The circles from sprocket a over the guides to sprocket b (route order, the pivoting guide g
+// turned by dPsi about its pivot). Where the chain would touch guide g's circle beyond the end of
+// its face, it bends over that end instead: a corner circle of the pitch line's height about the
+// face's end, joined to the guide's circle there. `guide`: the index of g's circle in the run.
+bool spanRun(const std::vector<RouteCircle>& c, int a, int b, int g, const GuideFace& face, double dPsi, Vec2 pivot,
+             std::vector<RunCircle>& run, int& guide) {
+  const int n = static_cast<int>(c.size());
+  run.clear();
+  for (int r = a;; r = (r + 1) % n) {
+    if (r == g) guide = static_cast<int>(run.size());
+    run.push_back(RunCircle{c[r], false, 0.0});
+    if (r == b) break;
+  }
+  if (!face.present) return true;
+  const bool ccw = c[g].signedRadius > 0.0;
+  const double sg = ccw ? 1.0 : -1.0;
+  // where the chain would arrive on and leave the guide's circle (no common tangent: the circles
+  // overlap, the chain bends over the face's end)
+  Vec2 mIn, mOut;
+  const bool arrivesOnFace = commonTangent(run[guide - 1].c, run[guide].c, mIn) && onFace(face, angleOf(sg * mIn) - dPsi);
+  const bool leavesOnFace = commonTangent(run[guide].c, run[guide + 1].c, mOut) && onFace(face, angleOf(sg * mOut) - dPsi);
+  if (!leavesOnFace) {
+    const Vec2 end = pivot + rotate((ccw ? face.faceEnd : face.faceStart) - pivot, dPsi);
+    run[guide].junction = true;
+    run[guide].junctionAngle = (ccw ? face.end : face.start) + dPsi;
+    run.insert(run.begin() + guide + 1, RunCircle{RouteCircle{end, sg * face.height}, false, 0.0});
+  }
+  if (!arrivesOnFace) {
+    const Vec2 start = pivot + rotate((ccw ? face.faceStart : face.faceEnd) - pivot, dPsi);
+    run.insert(run.begin() + guide, RunCircle{RouteCircle{start, sg * face.height}, true, (ccw ? face.start : face.end) + dPsi});
+    ++guide;
+  }
+  return true;
 }
 
 // One node of a guide table: the span's length from a to b and the guide torque coefficients
 // with the wrapped arc of route element g turned by dPsi about the guide's pivot.
-bool tableNode(const Model& m, const std::vector<RouteCircle>& circles0, int a, int b, int g, Vec2 pivot,
-               double dPsi, double& length, double& torqueIn, double& torqueOut) {
+bool tableNode(const Model& m, const std::vector<RouteCircle>& circles0, const GuideFace& face, int a, int b, int g,
+               Vec2 pivot, double dPsi, double& length, double& torqueIn, double& torqueOut) {
   std::vector<RouteCircle> c = circles0;
   c[g].center = pivot + rotate(circles0[g].center - pivot, dPsi);
-  ChainPath path;
-  try {
-    path = ChainPath::through(c);
-  } catch (const std::invalid_argument&) {
-    return false;
+  std::vector<RunCircle> run;
+  int guide = -1;
+  if (!spanRun(c, a, b, g, face, dPsi, pivot, run, guide)) return false;
+  std::vector<double> dep, arr, len;
+  if (!runTangents(run, dep, arr, len)) return false;
+  const std::size_t k = run.size();
+  length = 0.0;
+  for (std::size_t i = 0; i + 1 < k; ++i) length += len[i];
+  for (std::size_t i = 1; i + 1 < k; ++i) {  // the arcs between the end sprockets, in the running sense
+    double sweep = dep[i] - arr[i];
+    if (run[i].c.signedRadius < 0.0) sweep = -sweep;
+    sweep -= 2.0 * kPi * std::floor(sweep / (2.0 * kPi));
+    if (sweep > 2.0 * kPi - 1e-9) sweep = 0.0;
+    length += std::fabs(run[i].c.signedRadius) * sweep;
   }
-  length = referenceLength(path, m.path, a, b);
-  const PathSegment& arc = path.segments()[2 * g];
-  const Vec2 lever = arc.center - pivot;
-  const Vec2 tIn = runningTangent(arc.angle0, arc.signedRadius);
-  const Vec2 tOut = runningTangent(arc.angle0 + arc.sweep, arc.signedRadius);
-  torqueIn = -(cross(lever, tIn) + arc.signedRadius);
-  torqueOut = cross(lever, tOut) + arc.signedRadius;
+  // the ends: from the reference tangent points on a and b (the assembled path)
+  length += wrapAngle(dep.front() - exitAngle(m.path, a)) * c[a].signedRadius;
+  length += wrapAngle(arrivalAngle(m.path, b) - arr.back()) * c[b].signedRadius;
+  // the guide's loads: the tension along the free line arriving at its first contact and along
+  // the one leaving its last (corners included)
+  const int first = run[guide - 1].junction ? guide - 1 : guide;
+  const int last = run[guide].junction ? guide + 1 : guide;
+  const Vec2 pIn = pointAt(run[first].c, arr[first]), pOut = pointAt(run[last].c, dep[last]);
+  const Vec2 tIn = pIn - pointAt(run[first - 1].c, dep[first - 1]);
+  const Vec2 tOut = pointAt(run[last + 1].c, arr[last + 1]) - pOut;
+  torqueIn = -cross(pIn - pivot, tIn) / norm(tIn);
+  torqueOut = cross(pOut - pivot, tOut) / norm(tOut);
   return true;
 }
 
@@ -98,15 +209,16 @@ GuideTable guideTable(const Model& m, int a, int b, int g, const GuideModel& gui
   t.rotor = guide.rotor;
   const double psi0 = m.rotors[guide.rotor].initialAngle;
   const std::vector<RouteCircle> circles0 = pathCircles(m.path);
+  const GuideFace face = guideFace(gd, guide.pivot, psi0, circles0[g]);
   const double h = 1e-6;
   t.dAngle = (gd.angleMax - gd.angleMin) / (kTableNodes - 1);
   bool started = false;
   for (int i = 0; i < kTableNodes; ++i) {
     const double psi = gd.angleMin + i * t.dAngle;
     double len, lp, lm, tin, tout, dummy1, dummy2;
-    const bool ok = tableNode(m, circles0, a, b, g, guide.pivot, psi - psi0, len, tin, tout) &&
-                    tableNode(m, circles0, a, b, g, guide.pivot, psi - psi0 + h, lp, dummy1, dummy2) &&
-                    tableNode(m, circles0, a, b, g, guide.pivot, psi - psi0 - h, lm, dummy1, dummy2);
+    const bool ok = tableNode(m, circles0, face, a, b, g, guide.pivot, psi - psi0, len, tin, tout) &&
+                    tableNode(m, circles0, face, a, b, g, guide.pivot, psi - psi0 + h, lp, dummy1, dummy2) &&
+                    tableNode(m, circles0, face, a, b, g, guide.pivot, psi - psi0 - h, lm, dummy1, dummy2);
     if (!ok) {
       if (started && psi > psi0) break;  // the valid range around the assembled angle ends here
       continue;
@@ -273,7 +385,7 @@ void describeSpans(SpanModel& sm) {
 
 // A table of contents: the route's spans, the chain lumped on the sprockets, the map of the
 // path, the state layout.
-SpanModel assembleSpanModel(const Model& m, bool measureSlack) {
+SpanModel assembleSpanModel(const Model& m, bool calibrate) {
   const std::vector<RouteItem> route = routeItems(m.description);
   const int n = static_cast<int>(route.size());
   std::vector<int> sprockets;
@@ -310,7 +422,7 @@ SpanModel assembleSpanModel(const Model& m, bool measureSlack) {
   sm.monitoredStart = linkCentres(m);
   layOutState(m, sm);
   describeSpans(sm);
-  if (measureSlack) measureSeatingSlack(sm);
+  if (calibrate) calibrateSpanModel(sm);
   return sm;
 }
 
@@ -330,6 +442,28 @@ void smallSinCos(double x, double& s, double& c) {
 }
 
 }  // namespace
+
+namespace {
+
+// The segment of a law's nodes that holds e: the first below the first node, the last above.
+std::size_t segmentOf(const EngagementLaw& law, double e) {
+  std::size_t k = 0;
+  while (k + 2 < law.stretch.size() && e >= law.stretch[k + 1]) ++k;
+  return k;
+}
+
+}  // namespace
+
+double EngagementLaw::tensionAt(double e) const {
+  const std::size_t k = segmentOf(*this, e);
+  const double slope = (tension[k + 1] - tension[k]) / (stretch[k + 1] - stretch[k]);
+  return tension[k] + slope * (e - stretch[k]);
+}
+
+double EngagementLaw::energyAt(double e) const {
+  const std::size_t k = segmentOf(*this, e);
+  return energy[k] + 0.5 * (tension[k] + tensionAt(e)) * (e - stretch[k]);
+}
 
 double chainPassed(const SpanEnd& e, double theta, double& effectiveRadius) {
   const double u = (theta + e.phase) / e.toothAngle;

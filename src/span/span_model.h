@@ -7,20 +7,19 @@
 //
 // Kinematics of a span from sprocket A (where the chain leaves) to sprocket B (where it
 // arrives), with the tension guide's angle psi:
-//   stretch  e = l(psi) - l(psi0) - slack - (s_A(theta_A) - s_B(theta_B))
+//   stretch  e = l(psi) - l(psi0) - (s_A(theta_A) - s_B(theta_B))
 //   s(theta) = chain passed through the sprocket's tangent point when it has turned theta in the
 //              running sense: p round(u) + R sin(theta_rel), u = (theta + phase) / (2 pi / z),
 //              theta_rel = (u - round(u)) 2 pi / z, so ds/dtheta = R cos(theta_rel): the polygonal
 //              action (effective radius R cos(theta_rel) within one pitch; chain speed ratio
 //              cos(pi / z)), and exactly one pitch per tooth
 //   l(psi)   = path length between fixed reference points on A and B (the tangent points at the
-//              assembled pose), from a table over the guide's angle range.
-//   slack    chain the link model holds beyond the nominal path: its rollers settle into the tooth
-//            gaps and the chain on the guides, so that its tension guide stands further out than
-//            the path of pitch circles says. Measured once per drive (span_calibration.h) from the
-//            link model's static preload and put into the span of the tension guide.
-// Forces: spring tension T = k e + c e' (a span is bilateral: it stays valid while in tension);
-// over a guide of wrap angle beta the tension above the centrifugal part rho v^2 grows by the
+//              assembled pose), from a table over the guide's angle range; the chain runs over
+//              a guide's face between tangent points, and where a tangent point would lie
+//              beyond the face's end it bends over that end (the pitch line's height about it).
+// Forces: spring tension T = f(e) + c e', f the span's engagement law identified from the link
+// model's statics (span_calibration.h; without one f = k e); a span is bilateral: it stays valid
+// while in tension; over a guide of wrap angle beta the tension above the centrifugal part rho v^2 grows by the
 // capstan factor exp(mu beta) in the running direction; the guide feels the normal and friction
 // loads of (T - rho v^2); a sprocket feels (T_leaving - T_arriving) R cos(theta_rel).
 #pragma once
@@ -55,6 +54,19 @@ struct GuideTable {
   double angleMax() const { return angle0 + dAngle * (static_cast<double>(length.size()) - 1.0); }
 };
 
+/// A span's tension over its stretch where the link model's rollers seat in the tooth gaps and
+/// its links settle on the guides: soft at small tensions, stiffer once the rollers sit on the
+/// flanks. Nodes (stretch, tension) identified from the link model's statics under several loads
+/// (span_calibration.h), linear between them and beyond the ends with the end segments' slopes.
+/// The stretch counts from the nominal path (the law holds the seating slack). Empty: T = k e.
+struct EngagementLaw {
+  std::vector<double> stretch, tension;  // [m], [N] nodes, both increasing
+  std::vector<double> energy;            // [J] integral of the tension from the first node
+  bool empty() const { return stretch.empty(); }
+  double tensionAt(double e) const;      // [N]
+  double energyAt(double e) const;       // [J] integral of the tension from the first node to e
+};
+
 struct Span {
   std::string name;           // "<from>-><to>"
   SpanEnd from, to;           // A: the chain leaves it into the span; B: the chain arrives on it
@@ -63,7 +75,7 @@ struct Span {
   double damping = 0.0;       // [N s/m] joint damping / links
   double mass = 0.0;          // [kg] chain in the span
   double length0 = 0.0;       // [m] reference length at the assembled pose
-  double slack = 0.0;         // [m] chain beyond the nominal path (see the header comment)
+  EngagementLaw engagement;   // identified from the link model's statics (empty: T = stiffness e)
   std::vector<double> parts;  // [m] lengths of the free parts between guides (guides + 1 parts)
   double partsLength = 0.0;   // [m] their sum
   std::vector<double> wraps;  // [rad] wrap angles of the guides in the span, running order
@@ -102,11 +114,12 @@ struct SpanModel {
   int stateChamberPressure = -1;  // a hydraulic tensioner's chamber (-1: none)
 };
 
-/// Assembles the span model of an assembled link model (which must outlive it), with the seating
-/// slack measured from the link model's static preload unless `measureSlack` is false. Throws
+/// Assembles the span model of an assembled link model (which must outlive it), with its spans'
+/// engagement laws calibrated from the link model's statics (span/calibration_cache.h) unless
+/// `calibrate` is false (then T = k e). Throws
 /// DescriptionError naming the field when the drive has no span model (fewer than two sprockets
 /// in the route, a span holding more than one pivoting guide).
-SpanModel assembleSpanModel(const Model& m, bool measureSlack = true);
+SpanModel assembleSpanModel(const Model& m, bool calibrate = true);
 
 /// s(theta) and ds/dtheta of a span end (see the header comment); theta in the running sense.
 double chainPassed(const SpanEnd& e, double theta, double& effectiveRadius);

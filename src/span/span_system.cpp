@@ -87,8 +87,6 @@ bool SpanSystem::healthy(double t, const double* y, Failure& why) noexcept {
   return true;
 }
 
-namespace {
-
 std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
   const Model& lm = *m.links;
   std::vector<double> y(m.nStates, 0.0);
@@ -101,6 +99,8 @@ std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
     y[m.stateChamberPressure] = chamberRestPressure(lm.tensioner.hydraulic, lm.tensioner.hydraulic.supplyPressure);
   return y;
 }
+
+namespace {
 
 // Newton's method on the torques of the free rotors over their angles (forward differences).
 struct StaticSolve {

@@ -43,6 +43,9 @@ class SpanSystem : public OdeSystem {
   std::vector<double> yWork_, f0_, f1_;
 };
 
+/// Rotors at their assembled angles and nominal rates, the chamber at rest, accumulators zero.
+std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed);
+
 /// The start state: rotors at their assembled angles and nominal speeds, the free rotors (free
 /// sprockets, pivoting guides) moved to the static equilibrium of the span forces (without
 /// damping, with the centrifugal part and guide friction of the nominal motion), the load

@@ -374,9 +374,11 @@ std::vector<double> nominalState(const Model& m, const std::vector<double>& rate
 // A table of contents: the nominal state, the loads, the solve at rest over the free
 // coordinates, then the nominal velocities put back.
 std::vector<double> initialState(const Model& m, const InputValues& inputs, const PreloadOptions& opt,
-                                 PreloadReport& report) {
+                                 PreloadReport& report, const std::vector<double>* guess) {
   const double t0 = cpuNow();
   std::vector<double> y = nominalState(m, inputs.crankSpeed);
+  const std::vector<double> yNominal = y;
+  if (guess) y = *guess;  // its velocities are set below, its chamber too
   // a hydraulic tensioner's chamber at rest: filled to the supply's pressure less the check
   // valve's cracking pressure (the valve just closed); the solve holds it
   if (m.stateChamberPressure >= 0) y[m.stateChamberPressure] = chamberRestPressure(m.tensioner.hydraulic, inputs.supplyPressure);
@@ -389,7 +391,6 @@ std::vector<double> initialState(const Model& m, const InputValues& inputs, cons
   // loads: the d'Alembert forces of the nominal motion, fixed during the solve
   const std::vector<double> inertial = dAlembertForces(m, inputs.crankSpeed);
   // the solve runs at rest: keep the nominal velocities, zero them in y
-  const std::vector<double> yNominal = y;
   setVelocities(m, y, nullptr);
   // Newton solve over the free coordinates (links and free rotors)
   PreloadSolve solve(m, inputs, inertial, yNominal);

@@ -38,7 +38,8 @@ std::vector<double> nominalState(const Model& m, double crankSpeed);
 std::vector<double> nominalState(const Model& m, const std::vector<double>& rates, double chainSpeed);
 
 /// Nominal state, pre-loaded. Throws std::runtime_error if the solve diverges (with the reason).
+/// `guess`: the solve starts from its positions instead of the nominal pose (a nearby solution).
 std::vector<double> initialState(const Model& m, const InputValues& inputs, const PreloadOptions& opt,
-                                 PreloadReport& report);
+                                 PreloadReport& report, const std::vector<double>* guess = nullptr);
 
 }  // namespace chaindrive

@@ -1,6 +1,6 @@
 // The span model against analytic references (static tension split, polygonal speed
-// fluctuation, span eigenfrequency), against the link model's statics, its options' errors, and
-// the bit-identity of a run restored from a saved state.
+// fluctuation, span eigenfrequency), its options' errors, and the bit-identity of a run restored
+// from a saved state (its calibration against the link model's statics: span_calibration_test.cpp).
 #include "span/span_dynamics.h"
 
 #include <cmath>
@@ -125,24 +125,6 @@ TEST(SpanDynamics, SpanEigenfrequencyIsTheSpringMassValue) {
   ASSERT_EQ(crossings.size(), 11u);
   const double measured = 5.0 / (crossings.back() - crossings.front());
   EXPECT_NEAR(measured, expected, 0.02 * expected) << "analytic " << expected << " Hz";
-}
-
-// The seating slack puts the span model's tension guide where the link model's is at rest, and
-// with it the slack span's force.
-TEST(SpanDynamics, StaticsAtRestMatchTheLinkModel) {
-  const auto m = defaultModel();
-  SimulationOptions linkOpt;
-  linkOpt.integrator.method = named<IntegratorMethod>("fixed-verlet");
-  Simulation link(m, linkOpt, constantLoads(*m, 0.0, 0.0, 0.0));
-  Simulation span(m, spanOptions(), constantLoads(*m, 0.0, 0.0, 0.0));
-  link.start(0.0);
-  span.start(0.0);
-  const Outputs lo = link.outputs();
-  const Outputs so = span.outputs();
-  const int guide = m->tensioner.rotor;
-  EXPECT_NEAR(so.rotorAngle[guide], lo.rotorAngle[guide], 1e-8);
-  EXPECT_NEAR(so.tensionerForce, lo.tensionerForce, 0.01 * lo.tensionerForce);
-  EXPECT_NEAR(so.slackSpanForce, lo.slackSpanForce, 0.01 * lo.slackSpanForce);
 }
 
 // What the span fidelity cannot run is an error naming the option and what is allowed.

@@ -1,0 +1,155 @@
+#include "span/calibration_cache.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "utf8_path.h"
+
+namespace chaindrive {
+extern const std::string_view kSourceHash;  // generated: the solver's sources, hashed (CMakeLists.txt)
+}
+
+namespace chaindrive::span {
+
+namespace {
+
+using json = nlohmann::json;
+constexpr int kFormat = 1;  // of the cache file
+
+std::uint64_t fnv1a(std::string_view text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+  return h;
+}
+
+std::string hex(double x) {
+  char s[40];
+  std::snprintf(s, sizeof s, "%a", x);
+  return s;
+}
+
+json hexArray(const std::vector<double>& v) {
+  json a = json::array();
+  for (double x : v) a.push_back(hex(x));
+  return a;
+}
+
+std::vector<double> fromHex(const json& a) {
+  std::vector<double> v;
+  for (const json& x : a) v.push_back(std::strtod(x.get<std::string>().c_str(), nullptr));
+  return v;
+}
+
+json toJson(const SpanCalibration& c, const std::string& key) {
+  json laws = json::array();
+  for (const EngagementLaw& law : c.laws)
+    laws.push_back({{"stretch_m", hexArray(law.stretch)}, {"tension_N", hexArray(law.tension)},
+                    {"energy_J", hexArray(law.energy)}});
+  return {{"format", kFormat}, {"key", key}, {"laws", laws}, {"poses", c.poses}, {"posesRejected", c.posesRejected},
+          {"residualRms_m", hexArray(c.residualRms)}, {"residualMax_m", hexArray(c.residualMax)},
+          {"leverRatioMin", hexArray(c.leverRatioMin)}, {"leverRatioMax", hexArray(c.leverRatioMax)},
+          {"cpuSeconds", c.cpuSeconds}};
+}
+
+// The calibration in the file, if it is one of this key for this many spans.
+bool readCalibration(const std::string& file, const std::string& key, std::size_t spans, SpanCalibration& c) {
+  std::ifstream in(utf8Path(file), std::ios::binary);
+  if (!in) return false;
+  try {
+    const json j = json::parse(in);
+    if (j.at("format") != kFormat || j.at("key") != key || j.at("laws").size() != spans) return false;
+    for (const json& law : j.at("laws"))
+      c.laws.push_back(EngagementLaw{fromHex(law.at("stretch_m")), fromHex(law.at("tension_N")),
+                                     fromHex(law.at("energy_J"))});
+    c.poses = j.at("poses");
+    c.posesRejected = j.at("posesRejected");
+    c.residualRms = fromHex(j.at("residualRms_m"));
+    c.residualMax = fromHex(j.at("residualMax_m"));
+    c.leverRatioMin = fromHex(j.at("leverRatioMin"));
+    c.leverRatioMax = fromHex(j.at("leverRatioMax"));
+    c.cpuSeconds = j.at("cpuSeconds");
+    return true;
+  } catch (const json::exception&) {
+    c = SpanCalibration{};  // a damaged file: calibrate afresh
+    return false;
+  }
+}
+
+// Written beside and renamed into place: an instance reading meanwhile sees the old file or the new.
+bool writeCalibration(const std::string& dir, const std::string& file, const json& j) {
+  std::error_code error;
+  std::filesystem::create_directories(utf8Path(dir), error);
+  const std::string tmp = file + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(&j));
+  {
+    std::ofstream out(utf8Path(tmp), std::ios::binary);
+    if (!out) return false;
+    out << j.dump(1) << "\n";
+    if (!out) return false;
+  }
+  std::filesystem::rename(utf8Path(tmp), utf8Path(file), error);  // replaces the file atomically
+  if (error) std::filesystem::remove(utf8Path(tmp), error);
+  return !error;
+}
+
+}  // namespace
+
+std::string calibrationKey(const Model& m) {
+  const TensionerDesc& t = m.description.tensioner;
+  // the FMU's parameters that override the description
+  const std::string overrides = hex(t.preload) + " " + hex(t.stiffness) + " " + hex(t.damping) + " " +
+                                hex(t.dampingExtension) + " " + hex(t.hydraulic.oilTemperature);
+  char key[40];
+  std::snprintf(key, sizeof key, "%016llx",
+                static_cast<unsigned long long>(fnv1a(m.description.canonicalText + "|" + overrides + "|" +
+                                                      std::string(kSourceHash))));
+  return key;
+}
+
+std::string calibrationCacheDir() {
+  const char* own = std::getenv("CHAINDRIVE_CACHE_DIR");
+  if (own) return std::string(own) == "none" ? "" : own;
+#ifdef _WIN32
+  const char* local = std::getenv("LOCALAPPDATA");
+  return local ? std::string(local) + "\\chaindrive" : "";
+#else
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg && *xdg) return std::string(xdg) + "/chaindrive";
+  const char* home = std::getenv("HOME");
+  return home ? std::string(home) + "/.cache/chaindrive" : "";
+#endif
+}
+
+void calibrateSpanModel(SpanModel& sm, bool* fromCache, std::string* file) {
+  const std::string key = calibrationKey(*sm.links), dir = calibrationCacheDir();
+  const std::string path = dir.empty() ? "" : dir + "/span-" + key + ".json";
+  SpanCalibration c;
+  const bool cached = !path.empty() && readCalibration(path, key, sm.spans.size(), c);
+  if (!cached) {
+    try {
+      c = identifySpanLaws(sm);
+    } catch (const std::runtime_error& e) {  // a drive whose statics leave spans slack: no laws
+      sm.notes.push_back(std::string("calibration: none (") + e.what() + "); the spans keep the joints' stiffness");
+      if (fromCache) *fromCache = false;
+      if (file) file->clear();
+      return;
+    }
+  }
+  applyCalibration(sm, c);
+  for (const std::string& line : describeCalibration(sm, c)) sm.notes.push_back("calibration: " + line);
+  const bool written = !cached && !path.empty() && writeCalibration(dir, path, toJson(c, key));
+  sm.notes.push_back("calibration: key " + key + (cached ? ", from the cache " + path
+                                                  : written ? ", written to the cache " + path
+                                                            : ", not cached (" + (dir.empty() ? std::string("no cache folder")
+                                                                                             : "cannot write " + path) + ")"));
+  if (fromCache) *fromCache = cached;
+  if (file) *file = path;
+}
+
+}  // namespace chaindrive::span
