@@ -70,7 +70,7 @@ double referenceLength(const ChainPath& path, const ChainPath& ref, int a, int b
 struct GuideFace {
   bool present = false;
   double start = 0.0, end = 0.0;  // [rad]
-  Vec2 faceStart, faceEnd;        // [m] face ends, drawn pose
+  Vec2 faceStart, faceEnd;        // [m] face ends, assembled pose
   double height = 0.0;            // [m]
 };
 
