@@ -7,7 +7,8 @@ listed .cpp with sources/ as the only include directory, so sources/ holds:
 - the FMU's protocol glue and this FMU's model adapter, side by side in sources/fmu/ (every
   header has a name of its own; the adapter's <adapter>_fmu.cpp includes its <adapter>_adapter.h
   and the glue's fmi2_functions.h from that folder);
-- the embedded default descriptions, generated as the CMake build does (cmake/EmbedText.cmake);
+- the embedded default descriptions, generated as the CMake build does (cmake/EmbedText.cmake),
+  and the hash of the solver's sources (cmake/SourceHash.cmake: the span calibration cache's key);
 - the header-only libraries (Eigen/, nlohmann/) and the FMI 2 headers, so it is self-contained.
 SUNDIALS is not in it: the files that call SUNDIALS are left out and their *_without_sundials.cpp
 stand-ins refuse the adaptive, BDF and event-driven methods by name; the fixed-step methods (the
@@ -79,6 +80,7 @@ def write(dest, adapter):
         copy(path, dest / rel)
     for json_name, symbol in EMBEDDED.items():
         embed(src / "drives" / json_name, dest / f"{pathlib.Path(json_name).stem}_embedded.cpp", symbol)
+    source_hash(dest / "source_hash.cpp")
     shutil.copytree("/usr/include/eigen3/Eigen", dest / "Eigen", dirs_exist_ok=True)
     shutil.copytree("/usr/include/nlohmann", dest / "nlohmann", dirs_exist_ok=True)
     for header in FMI2_HEADERS:
@@ -90,6 +92,22 @@ def write(dest, adapter):
 def copy(path, to):
     to.parent.mkdir(parents=True, exist_ok=True)
     shutil.copyfile(path, to)
+
+
+def source_hash(out):
+    """kSourceHash over the files the CMake build hashes (its core sources, then every header, each
+    list in CMake's glob order), by the CMake build's own script: a source build shares the
+    shipped binaries' calibration cache."""
+    src = paths.ROOT / "src"
+    sources = sorted((str(p) for p in src.rglob("*.cpp")
+                      if "/src/cli/" not in p.as_posix() and not p.name.endswith("_without_sundials.cpp")))
+    headers = sorted(str(p) for p in src.rglob("*.h"))
+    listing = out.parent / "source_hash_files.txt"
+    listing.write_text(";".join(sources + headers))
+    subprocess.run(["cmake", f"-DLIST={listing}", f"-DOUT={out}", "-P", str(paths.ROOT / "cmake" / "SourceHash.cmake")],
+                   check=True, capture_output=True)
+    listing.unlink()
+    pathlib.Path(f"{out}.tmp").unlink()
 
 
 def embed(json_file, out, symbol):
