@@ -2,30 +2,14 @@
 naming the option or field, the value and what is allowed, with exit status 2 and no traceback;
 --debug (before or after the command) shows the traceback too (harness/cli.py, harness/errors.py)."""
 import json
-import subprocess
-import sys
 
 import pytest
 
 from harness import paths
 from harness.errors import UserError, tool_failure
+from harness_cli import harness, one_error_line
 
 DEFAULT_DRIVE = paths.ROOT / "src" / "drives" / "default_drive.json"
-
-
-def harness(*argv, cwd=None):
-    """python -m harness with argv: (exit status, stdout, stderr)."""
-    p = subprocess.run([sys.executable, "-m", "harness", *argv], capture_output=True, text=True, timeout=300,
-                       cwd=cwd or paths.ROOT)
-    return p.returncode, p.stdout, p.stderr
-
-
-def one_error_line(status, stderr):
-    """The single `error:` line of a refused command (asserted: exit status 2, one line, no traceback)."""
-    assert status == 2, stderr
-    lines = stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), stderr
-    return lines[0]
 
 
 def misspelled_drive(tmp_path):

@@ -3,36 +3,18 @@
 hydraulic tensioner), the chamber pressure's statistics in the summary, the sweep's oil settings as
 coordinates and the tensioner study. Short runs: seconds each."""
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
-from harness import cycle_stats, job, paths
+from harness import cycle_stats, job
 from harness.drive import design
 from harness.drive.description import drive_json
 from harness.errors import UserError
 from harness.tables import tables
+from harness_cli import harness, one_error_line
 
 CHAMBER = cycle_stats.CHAMBER
-
-
-def harness(*argv):
-    """python -m harness with argv: (exit status, stdout, stderr). (As test_cli_errors.py's: test
-    modules are imported by path, one cannot import another.)"""
-    p = subprocess.run([sys.executable, "-m", "harness", *argv], capture_output=True, text=True, timeout=300,
-                       cwd=paths.ROOT)
-    return p.returncode, p.stdout, p.stderr
-
-
-def one_error_line(status, stderr):
-    assert status == 2, stderr
-    lines = stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), stderr
-    return lines[0]
-
-
 
 
 @pytest.fixture(scope="module")
