@@ -2,7 +2,7 @@
 read from `chaindrive-info --defaults`, so that a run started here is the run the FMUs and the
 command-line tools make with the same options.
 
-    solver("timing", "span")  ->  Solver(method="fixed-verlet", step=2e-05, tolerance=1e-05)
+    solver("timing", "span")  ->  Solver(method="fixed-verlet", step=3.3333333333333335e-05, tolerance=1e-05)
 """
 import dataclasses
 import functools

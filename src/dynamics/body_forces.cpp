@@ -55,12 +55,22 @@ double tensionerOilViscosity(const TensionerModel& t) {
   return t.hydraulicChamber() ? oilViscosity(t.hydraulic.oil, t.hydraulic.oilTemperature) : 0.0;
 }
 
+namespace {
+
+// The pad's position along the plunger's direction from the housing [m].
+double padExtension(const TensionerModel& t, Vec2 pivot, Vec2 arm) { return dot(pivot + arm - t.housing, t.direction); }
+
+}  // namespace
+
+double tensionerStroke(const TensionerModel& t, Vec2 pivot, double cosA, double sinA) {
+  return padExtension(t, pivot, rotate(t.pad - pivot, cosA, sinA)) - t.nominalStroke;
+}
+
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,
                                const ChamberState& chamber) {
   TensionerResult r;
   const Vec2 arm = rotate(t.pad - pivot, cosA, sinA);
-  const Vec2 pad = pivot + arm;
-  const double s = dot(pad - t.housing, t.direction);
+  const double s = padExtension(t, pivot, arm);
   const double sDot = dot(crossWz(rate, arm), t.direction);
   const double spring = t.preload + t.stiffness * (t.nominalStroke - s);
   r.stroke = s - t.nominalStroke;

@@ -22,6 +22,8 @@ struct TensionerResult {
 };
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,
                                const ChamberState& chamber);
+/// The plunger's extension [m] relative to the nominal (drawn) pose, at the guide's angle (cos, sin).
+double tensionerStroke(const TensionerModel& t, Vec2 pivot, double cosA, double sinA);
 
 /// The tensioner's stored energy [J]: its spring's and a hydraulic chamber's compressed oil,
 /// p^2 V / (2 K) (what the energy balance of a run counts; not evaluated with every force).

@@ -29,6 +29,10 @@ double endStopForce(const HydraulicTensionerDesc& t, double stroke) {
 
 double plungerArea(const HydraulicTensionerDesc& t) { return 0.25 * kPi * t.plungerDiameter * t.plungerDiameter; }
 
+double chamberVolume(const HydraulicTensionerDesc& t, double stroke) {
+  return std::max(t.chamberVolume + plungerArea(t) * stroke, kMinVolumeFraction * t.chamberVolume);
+}
+
 double chamberRestPressure(const HydraulicTensionerDesc& t, double supplyPressure) {
   const double open = t.checkValve.present ? t.checkValve.crackingPressure : 0.0;
   return std::max(0.0, supplyPressure - open);
@@ -70,7 +74,7 @@ HydraulicResult hydraulicTensioner(const HydraulicTensionerDesc& t, double strok
                                    double supplyPressure, double viscosity) {
   const OilDesc& oil = t.oil;
   const double area = plungerArea(t);
-  const double volume = std::max(t.chamberVolume + area * stroke, kMinVolumeFraction * t.chamberVolume);
+  const double volume = chamberVolume(t, stroke);
   const double floor = floorPressure(oil);
   const double p = std::max(pressure, floor);  // a step may end a hair below the floor
 

@@ -47,6 +47,8 @@ struct HydraulicResult {
 double chamberRestPressure(const HydraulicTensionerDesc& t, double supplyPressure);
 /// The plunger area pi d^2 / 4 [m2].
 double plungerArea(const HydraulicTensionerDesc& t);
+/// The chamber's volume V0 + A s [m3] at the plunger's extension s [m] (at least a thousandth of V0).
+double chamberVolume(const HydraulicTensionerDesc& t, double stroke);
 /// Vogel's law: the oil's dynamic viscosity [Pa s] at temperature [K] (within the law's range).
 double oilViscosity(const OilDesc& oil, double temperature);
 /// The effective bulk modulus [Pa] of the oil with its entrained air at gauge pressure p (the

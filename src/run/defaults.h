@@ -30,7 +30,7 @@ struct SolverDefaults {
 // (why each row is what it is, with the measurements behind it: docs/defaults.md)
 inline constexpr SolverDefaults kSolverDefaults[] = {
   {Scene::TimingDrive, Fidelity::Link, IntegratorMethod::FixedVerlet, 2.5e-6, 1e-5},
-  {Scene::TimingDrive, Fidelity::Span, IntegratorMethod::FixedVerlet, 2e-5, 1e-5},
+  {Scene::TimingDrive, Fidelity::Span, IntegratorMethod::FixedVerlet, 1e-4 / 3, 1e-5},
   {Scene::Cvt, Fidelity::Link, IntegratorMethod::FixedVerlet, 5e-7, 1e-5},
 };
 // clang-format on

@@ -53,9 +53,9 @@ void spanAtPose(const SpanModel& sm, const std::vector<double>& yLink, const Inp
   const Model& m = *sm.links;
   std::vector<double> y = nominalSpanState(sm, in.crankSpeed);
   for (std::size_t r = 0; r < m.rotors.size(); ++r) y[sm.stateAngle[r]] = yLink[m.rotors[r].stateAngle];
-  if (sm.stateChamberPressure >= 0) y[sm.stateChamberPressure] = yLink[m.stateChamberPressure];
   SpanData d(sm);
   d.quasiStatic = true;
+  if (sm.stateChamberOil >= 0) d.heldChamberPressure = yLink[m.stateChamberPressure];  // the link model's, held
   d.prescribedTension = tension;
   HeldInputs held(m);
   held.values = in;

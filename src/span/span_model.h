@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "assembly/model.h"
+#include "span/chamber_oil.h"
 
 namespace chaindrive::span {
 
@@ -111,7 +112,8 @@ struct SpanModel {
   int nStates = 0;
   std::vector<int> stateAngle, stateRate;  // (rotors); rate -1 when prescribed
   int stateInputWork = -1, stateDissipated = -1;
-  int stateChamberPressure = -1;  // a hydraulic tensioner's chamber (-1: none)
+  int stateChamberOil = -1;  // a hydraulic tensioner's chamber: its oil content [m3] (-1: none)
+  ChamberOilLaw chamberOil;  // (with a chamber) its pressure over the content's volume ratio
 };
 
 /// Assembles the span model of an assembled link model (which must outlive it), with its spans'

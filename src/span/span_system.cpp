@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "dynamics/health.h"
+#include "math/elementary.h"
 
 namespace chaindrive::span {
 
@@ -59,13 +60,20 @@ void SpanSystem::toleranceScales(double* scale) const {
   }
   scale[model_.stateInputWork] = 1.0;
   scale[model_.stateDissipated] = 1.0;
-  if (model_.stateChamberPressure >= 0) scale[model_.stateChamberPressure] = 1e5;  // Pa
+  if (model_.stateChamberOil >= 0) {  // the content a change of 1 bar moves: V0 1e5 Pa / K
+    const HydraulicTensionerDesc& h = model_.links->tensioner.hydraulic;
+    scale[model_.stateChamberOil] = h.chamberVolume * 1e5 / h.oil.bulkModulus;
+  }
 }
 
 bool SpanSystem::healthy(double t, const double* y, Failure& why) noexcept {
   // finite state; no span stretched beyond the blow-up deformation per link; every pivoting
   // guide inside the angle range of its table
   if (!finiteState(y, model_.nStates, why)) return false;
+  if (model_.stateChamberOil >= 0 && !(y[model_.stateChamberOil] > 0.0)) {
+    why = {FailureKind::BlowUp, "blow-up at t = " + std::to_string(t) + " s: the tensioner's chamber emptied"};
+    return false;
+  }
   const Model& lm = *model_.links;
   for (std::size_t i = 0; i < model_.spans.size(); ++i) {
     const double perLink = std::fabs(data_.spans[i].stretch) / model_.spans[i].links;
@@ -95,9 +103,14 @@ std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
     y[m.stateAngle[r]] = lm.rotors[r].initialAngle;
     if (m.stateRate[r] >= 0) y[m.stateRate[r]] = rates[r];
   }
-  if (m.stateChamberPressure >= 0)
-    y[m.stateChamberPressure] = chamberRestPressure(lm.tensioner.hydraulic, lm.tensioner.hydraulic.supplyPressure);
+  if (m.stateChamberOil >= 0) setChamberAtRest(m, lm.tensioner.hydraulic.supplyPressure, y);
   return y;
+}
+
+void setChamberAtRest(const SpanModel& m, double supplyPressure, std::vector<double>& y) {
+  const TensionerModel& t = m.links->tensioner;
+  const double a = y[m.stateAngle[t.rotor]];
+  y[m.stateChamberOil] = chamberOilAt(m, math::cos(a), math::sin(a), chamberRestPressure(t.hydraulic, supplyPressure));
 }
 
 namespace {
@@ -152,8 +165,10 @@ std::vector<double> spanInitialState(const SpanModel& m, const InputValues& inpu
                                      PreloadReport& report) {
   const std::clock_t t0 = std::clock();
   std::vector<double> y = nominalSpanState(m, inputs.crankSpeed);
-  if (m.stateChamberPressure >= 0)  // the chamber at rest, as the link model's (statics/preload.cpp)
-    y[m.stateChamberPressure] = chamberRestPressure(m.links->tensioner.hydraulic, inputs.supplyPressure);
+  // the chamber at rest, as the link model's (statics/preload.cpp): its pressure held in the
+  // solve, its content then the one that holds it at the solved pose
+  const bool chamber = m.stateChamberOil >= 0;
+  if (chamber) setChamberAtRest(m, inputs.supplyPressure, y);
   report = PreloadReport{};
   if (!opt.enabled) {
     report.converged = true;
@@ -161,10 +176,12 @@ std::vector<double> spanInitialState(const SpanModel& m, const InputValues& inpu
     return y;
   }
   StaticSolve solve(m, inputs);
+  if (chamber) solve.d.heldChamberPressure = chamberRestPressure(m.links->tensioner.hydraulic, inputs.supplyPressure);
   // the solve at the nominal rates of the sprockets and at rest for the guides
   double rMax = 0.0;
   const int it = solve.run(y, opt, rMax);
   if (it < 0) throw std::runtime_error("span preload diverged (non-finite torque)");
+  if (chamber) setChamberAtRest(m, inputs.supplyPressure, y);
   report.iterations = it;
   report.residual = rMax / m.links->chain.pitch;
   report.converged = it < opt.maxIterations;

@@ -46,6 +46,10 @@ class SpanSystem : public OdeSystem {
 /// Rotors at their assembled angles and nominal rates, the chamber at rest, accumulators zero.
 std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed);
 
+/// Sets the chamber's oil content of y (a model with a hydraulic chamber) to the one at rest at
+/// the supply pressure [Pa] (dynamics/hydraulic_tensioner.h: chamberRestPressure) and y's guide angle.
+void setChamberAtRest(const SpanModel& m, double supplyPressure, std::vector<double>& y);
+
 /// The start state: rotors at their assembled angles and nominal speeds, the free rotors (free
 /// sprockets, pivoting guides) moved to the static equilibrium of the span forces (without
 /// damping, with the centrifugal part and guide friction of the nominal motion), the load

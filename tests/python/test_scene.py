@@ -95,12 +95,12 @@ def test_main_job_span_fidelity_quick(tmp_path):
     p = subprocess.run([sys.executable, "-m", "harness", "run", "--fidelity", "span", "--rpm", "6000", "--cycles", "3",
                         "--run-in", "2", "--out", str(tmp_path)], capture_output=True, text=True, cwd=paths.ROOT)
     assert p.returncode == 0, p.stderr + p.stdout
-    assert p.stdout.startswith("ChainDrive.fmu, span fidelity:") and "fixed-verlet at 20 us" in p.stdout
+    assert p.stdout.startswith("ChainDrive.fmu, span fidelity:") and "fixed-verlet at 33.3333 us" in p.stdout
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert list(summary) == cycle_stats.headline_keys(21, hydraulic=True)
     assert all(s["cycles"] == 3 and np.isfinite(s["mean"]) for s in summary.values())
     run = json.loads((tmp_path / "run.json").read_text())
-    assert run["fidelity"] == "span" and run["solverStep_s"] == 2e-5
+    assert run["fidelity"] == "span" and run["solverStep_s"] == 1e-4 / 3
     assert len(run["notes"]) == 1 and "note: span fidelity: outside the accuracy it was checked for" in p.stdout
     # the link model costs about 9 CPU s per simulated s inside fmi2DoStep; the span model a few hundredths
     assert 0.0 < run["doStepCpuPerSimulatedSecond"] < 2.0
