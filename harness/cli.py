@@ -5,9 +5,11 @@
     python -m harness study          work-precision charts and stability map (harness/study/study.py)
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
     python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
+    python -m harness span-steps     the span model's step convergence (harness/study/span_steps.py)
     python -m harness tensioner-study the hydraulic tensioner against the spring-damper law (harness/study/tensioner.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
     python -m harness bench-realtime the link model's real-time factor through the FMU (harness/bench/realtime.py)
+    python -m harness bench-fidelity the span model's cost against the real-time method's (harness/bench/fidelity_cost.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
     python -m harness bench-sweep    a sweep on 1 and 2 Dask workers and in a plain loop (harness/bench/sweep.py)
     python -m harness tables         the SYNTHESIZED input tables (harness/tables/make_tables.py)
@@ -45,11 +47,15 @@ COMMANDS = {
     "chaos": ("harness.study.chaos.chaos", "divergence rate of twin runs per damping setting"),
     "fidelity": ("harness.study.fidelity", "the span model against the link model within tolerances: "
                  "the cheapest fidelity that meets them"),
+    "span-steps": ("harness.study.span_steps", "the span model's cycle statistics over its step: the evidence "
+                   "behind its default step"),
     "tensioner-study": ("harness.study.tensioner", "the hydraulic tensioner against the spring-damper law at 1000, "
                         "3000 and 6000 rpm: every cycle statistic with its interval"),
     "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),
     "bench-realtime": ("harness.bench.realtime", "the link model's real-time factor and step-time spread through "
                        "ChainDrive.fmu, its accuracy against a reference"),
+    "bench-fidelity": ("harness.bench.fidelity_cost", "the span model's cost against the link model's real-time "
+                       "method through ChainDrive.fmu, in one run"),
     "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),
     "bench-sweep": ("harness.bench.sweep", "the same sweep on 1 and 2 Dask workers and in a plain loop: speed-up and "
                     "Dask's overhead per case"),

@@ -14,8 +14,9 @@ least 0.15 s long (4 cycles at 3000 rpm, 8 at 6000 rpm, 2 at 1000 rpm), is disca
 counted cycles (--cycles) follow.
 
 Two fidelities (--fidelity, the FMU parameter `fidelity`): link (default), the link-by-link model,
-and span, the span model (rotors and longitudinal spans, src/span/, about 80 times cheaper inside
-fmi2DoStep, not as accurate: python -m harness fidelity compares them). Both give the same
+and span, the span model (rotors and longitudinal spans, src/span/, a small fraction of the cost
+inside fmi2DoStep: python -m harness bench-fidelity measures it; not as accurate: python -m harness
+fidelity compares them). Both give the same
 outputs, so the same cycle statistics, plots and summary; the fidelity is named in the header line
 and the plot titles. The solver defaults to each fidelity's own (harness/defaults.py).
 

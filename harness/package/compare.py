@@ -86,13 +86,19 @@ def model_identifier(fmu_dir):
 def run_timing(fmu_dir, duration, method=None):
     """ChainDrive in closed loop with the measured-torque tables at 3000 rpm, the main job's
     options and master loop (default method unless `method`)."""
-    config = job.run_config(rpm=TIMING_RPM, method=method or None)
-    inputs = job.table_inputs(tables.camshaft_torque(config.rpm, None), tables.crankshaft_speed(config.rpm, None))
-    record, _ = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
+    return run_recorded(job.run_config(rpm=TIMING_RPM, method=method or None), duration, fmu_dir)[0]
+
+
+def run_recorded(config, duration, fmu_dir=None):
+    """ChainDrive run as `config` says over `duration`, in the main job's closed loop with the
+    measured-torque tables: (Run, the CPU seconds inside each fmi2DoStep)."""
+    inputs = job.table_inputs(tables.camshaft_torque(config.rpm, config.tables),
+                              tables.crankshaft_speed(config.rpm, config.tables))
+    record, step_cpus = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
     # (the record's inputs of row 0 are those of the initialization, looked up at zero angles)
     applied = {name: np.array(record[f"input.{name}"]) for name in inputs(0.0, 0.0, 0.0, 0.0)}
     outputs = {k: v for k, v in record.items() if k != "time" and not k.startswith("input.")}
-    return Run(job.parameters_of(config), applied, outputs)
+    return Run(job.parameters_of(config), applied, outputs), step_cpus
 
 
 def run_cvt(fmu_dir, duration):
@@ -131,6 +137,15 @@ def wine(prefix):
         subprocess.run(["wineserver", "-k"])
 
 
+def build_linux_master(work):
+    """fmi2_master.c for linux64, with the system's C compiler."""
+    exe = pathlib.Path(work) / "fmi2_master"
+    exe.parent.mkdir(parents=True, exist_ok=True)
+    subprocess.run(["cc", "-O2", "-Wall", "-Werror", f"-I{fmi2_include_dir()}", str(MASTER_SOURCE), "-o", str(exe),
+                    "-ldl"], check=True)
+    return exe
+
+
 def build_master(work):
     """fmi2_master.c for win64, with zig."""
     exe = pathlib.Path(work) / "fmi2_master.exe"
@@ -147,21 +162,27 @@ def windows_uri(path):
 def replay_on_windows(master, fmu_dir, run, work):
     """The run's parameters and inputs replayed on the FMU's win64 binary under wine; returns
     the Run it gives (its outputs and the FMU's log)."""
+    dll = pathlib.Path(fmu_dir) / "binaries" / "win64" / f"{model_identifier(fmu_dir)}.dll"
+    return replay(["wine64", str(master)], dll, windows_uri(pathlib.Path(fmu_dir) / "resources"), fmu_dir, run, work)
+
+
+def replay(master, binary, resources_uri, fmu_dir, run, work, step=COMMUNICATION_STEP):
+    """The run's parameters and inputs (one row per communication step of `step`) replayed by
+    fmi2_master.c (the command `master`) on `binary`; returns the Run it gives (its outputs and
+    the FMU's log, whose last line is the master's, with the CPU time inside fmi2DoStep)."""
     md = read_model_description(str(fmu_dir))
     variables = {v.name: v for v in md.modelVariables}
     reals = [n for n in run.outputs if variables[n].type == "Real"]
     integers = [n for n in run.outputs if variables[n].type == "Integer"]
     scenario, outputs = pathlib.Path(work) / "scenario.txt", pathlib.Path(work) / "outputs.txt"
-    scenario.write_text(scenario_text(run, variables, reals, integers))
-    dll = pathlib.Path(fmu_dir) / "binaries" / "win64" / f"{md.coSimulation.modelIdentifier}.dll"
-    command = ["wine64", str(master), str(dll), md.guid, windows_uri(pathlib.Path(fmu_dir) / "resources"),
-               str(scenario), str(outputs)]
+    scenario.write_text(scenario_text(run, variables, reals, integers, step))
+    command = [*master, str(binary), md.guid, resources_uri, str(scenario), str(outputs)]
     returncode, log, errors = run_to_files(command, pathlib.Path(work) / "master")
     if returncode != 0 and not log:
         # (the master says why whenever it fails; no word at all means wine did not run it)
         returncode, log, errors = run_to_files(command, pathlib.Path(work) / "master")
     if returncode != 0:
-        raise RuntimeError(f"fmi2_master under wine failed ({returncode}): {' | '.join(log[-5:])} {errors[-500:]}")
+        raise RuntimeError(f"fmi2_master failed ({returncode}): {' | '.join(log[-5:])} {errors[-500:]}")
     rows = [line.split() for line in outputs.read_text().splitlines()]
     got = {n: np.array([bits_to_float(r[i]) for r in rows]) for i, n in enumerate(reals)}
     got.update({n: np.array([int(r[len(reals) + i]) for r in rows]) for i, n in enumerate(integers)})
@@ -178,7 +199,7 @@ def run_to_files(command, stem):
     return returncode, out.read_text().splitlines(), err.read_text()
 
 
-def scenario_text(run, variables, reals, integers):
+def scenario_text(run, variables, reals, integers, step=COMMUNICATION_STEP):
     """The scenario file of fmi2_master.c."""
     lines = [f"parameters {len(run.parameters)}"]
     for name, value in run.parameters.items():
@@ -196,7 +217,7 @@ def scenario_text(run, variables, reals, integers):
     lines.append(f"reals {len(reals)} " + " ".join(str(variables[n].valueReference) for n in reals))
     lines.append(f"integers {len(integers)} " + " ".join(str(variables[n].valueReference) for n in integers))
     steps = len(run.inputs[names[0]]) - 1
-    lines.append(f"steps {steps} {float_to_bits(COMMUNICATION_STEP)}")
+    lines.append(f"steps {steps} {float_to_bits(step)}")
     for k in range(steps + 1):
         lines.append(" ".join(float_to_bits(run.inputs[n][k]) for n in names))
     return "\n".join(lines) + "\n"

@@ -14,8 +14,12 @@
  * outputs: count + 1 lines, each the reals' bits then the integers, after the initialization and
  * after every step. The FMU's log goes to standard output, one message per line.
  *
+ * The last line says how many steps ran and the CPU time of the thread inside fmi2DoStep, summed
+ * over the steps (a C master's view of the FMU's cost, without an interpreter's call overhead).
+ *
  * harness/package/compare.py builds it with zig (for win64, run under wine) and replays there
- * the inputs of a linux64 closed-loop run, so that both platforms see the same input bits. */
+ * the inputs of a linux64 closed-loop run, so that both platforms see the same input bits;
+ * harness/bench/fidelity_cost.py builds it for linux64 and times the FMU's models with it. */
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -25,6 +29,7 @@
 #include <windows.h>
 #else
 #include <dlfcn.h>
+#include <time.h>
 #endif
 
 #include "fmi2Functions.h"
@@ -62,6 +67,21 @@ static void writeBits(FILE* out, double x) {
   uint64_t bits;
   memcpy(&bits, &x, sizeof bits);
   fprintf(out, "%016llx ", (unsigned long long)bits);
+}
+
+/* [s] the CPU time of the calling thread */
+static double threadCpu(void) {
+#ifdef _WIN32
+  FILETIME created, exited, kernel, user;
+  GetThreadTimes(GetCurrentThread(), &created, &exited, &kernel, &user);
+  const double ticks = (double)(((uint64_t)kernel.dwHighDateTime << 32 | kernel.dwLowDateTime) +
+                                ((uint64_t)user.dwHighDateTime << 32 | user.dwLowDateTime));
+  return ticks * 1e-7; /* 100 ns ticks */
+#else
+  struct timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+#endif
 }
 
 static void* symbol(void* library, const char* name) {
@@ -184,14 +204,18 @@ int main(int argc, char** argv) {
   check(((fmi2ExitInitializationModeTYPE*)symbol(library, "fmi2ExitInitializationMode"))(c),
         "fmi2ExitInitializationMode");
   writeOutputs(library, c, out, realVr, nReal, intVr, nInt);
+  double doStepCpu = 0.0;
   for (int k = 0; k < steps; ++k) {
     setInputs(setReal, c, in, inputVr, nInputs);
-    check(doStep(c, k * h, h, fmi2True), "fmi2DoStep");
+    const double cpu0 = threadCpu();
+    const int status = doStep(c, k * h, h, fmi2True);
+    doStepCpu += threadCpu() - cpu0;
+    check(status, "fmi2DoStep");
     writeOutputs(library, c, out, realVr, nReal, intVr, nInt);
   }
   ((fmi2FreeInstanceTYPE*)symbol(library, "fmi2FreeInstance"))(c);
   fclose(out);
-  printf("fmi2_master: %d steps done\n", steps);
+  printf("fmi2_master: %d steps done, %.9f s CPU inside fmi2DoStep\n", steps, doStepCpu);
   fflush(stdout);
   return 0;
 }

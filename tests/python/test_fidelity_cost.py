@@ -1,0 +1,57 @@
+"""The span model's cost benchmark (harness/bench/fidelity_cost.py) and its step study
+(harness/study/span_steps.py): the report's ratio, the C master's replay with the fmpy run's bits,
+and the option checks."""
+import argparse
+import json
+
+import pytest
+
+from harness import cli
+from harness.bench import fidelity_cost
+from harness.study import span_steps
+
+
+def parse(module, argv):
+    ap = argparse.ArgumentParser()
+    module.add_arguments(ap)
+    return module.check(ap, ap.parse_args(argv))
+
+
+def test_ratio_lines_judge_the_c_masters_figures():
+    config = argparse.Namespace(method="fixed-verlet-implicit-joint-damping", solver_step=1e-4 / 28)
+    meets = fidelity_cost.lines_of(1e-4, {"link": (1.0, 1.1, config), "span": (0.04, 0.07, None)})[0]
+    assert "ratio **1/25.0**" in meets and "meets" in meets and "1/15.7" in meets
+    misses = fidelity_cost.lines_of(1e-3, {"link": (1.0, 1.0, config), "span": (0.06, 0.06, None)})[0]
+    assert "ratio **1/16.7**" in misses and "MISSES" in misses
+
+
+@pytest.mark.parametrize("module, argv, message", [
+    (fidelity_cost, ["--cycles", "0"], "--cycles 0"),
+    (fidelity_cost, ["--repeats", "0"], "--repeats 0"),
+    (span_steps, ["--cycles", "1"], "--cycles 1"),
+    (span_steps, ["--steps", "1e-5"], "a reference and at least one more"),
+    (span_steps, ["--steps", "1e-5", "2e-3"], "each in (0, 1e-3] s"),
+])
+def test_option_errors_name_the_option(module, argv, message, capsys):
+    with pytest.raises(SystemExit):
+        parse(module, argv)
+    assert message in capsys.readouterr().err
+
+
+def test_short_benchmark_replays_with_the_same_bits(tmp_path):
+    out = tmp_path / "cost.md"
+    # (a replay whose outputs differ from the fmpy run's raises: the run returning 0 says they agree)
+    assert cli.main(["bench-fidelity", "--rpm", "3000", "--cycles", "1", "--repeats", "1", "--out", str(out)]) == 0
+    report = out.read_text()
+    assert "## 3000 rpm" in report and "C master" in report
+    assert report.count("span model RTF") == 2 and "0.1 ms communication steps" in report
+
+
+def test_short_step_study_compares_with_the_reference(tmp_path):
+    out = tmp_path / "steps"
+    assert cli.main(["span-steps", "--rpm", "3000", "--steps", "2.5e-5", "5e-5", "--cycles", "2",
+                     "--out", str(out)]) == 0
+    found = json.loads((out / "steps.json").read_text())["speeds"]["3000"]
+    rows = found[repr(5e-5)]["rows"]
+    assert {r["key"] for r in rows} >= {"tensioner.F.mean", "tensionGuide.phi.peakToPeak_deg"}
+    assert "## 3000 rpm (reference: 25 us)" in (out / "steps.md").read_text()
