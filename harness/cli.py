@@ -6,6 +6,7 @@
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
     python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
     python -m harness span-steps     the span model's step convergence (harness/study/span_steps.py)
+    python -m harness pulse-response the camshafts' pulse response, link against span (harness/study/pulse_response.py)
     python -m harness tensioner-study the hydraulic tensioner against the spring-damper law (harness/study/tensioner.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
     python -m harness bench-realtime the link model's real-time factor through the FMU (harness/bench/realtime.py)
@@ -49,6 +50,8 @@ COMMANDS = {
                  "the cheapest fidelity that meets them"),
     "span-steps": ("harness.study.span_steps", "the span model's cycle statistics over its step: the evidence "
                    "behind its default step"),
+    "pulse-response": ("harness.study.pulse_response", "the camshafts' response to a torque pulse, link model "
+                       "against span model: is there a modal damping to identify"),
     "tensioner-study": ("harness.study.tensioner", "the hydraulic tensioner against the spring-damper law at 1000, "
                         "3000 and 6000 rpm: every cycle statistic with its interval"),
     "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),

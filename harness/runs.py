@@ -18,10 +18,10 @@ def read_csv(path):
 
 def run(out_csv, rpm=3000.0, cycles=2.0, duration=None, integrator="fixed-verlet", rtol=None, step=None,
         output_step=1e-4, inputs_csv=None, loads=None, crank_vibration=None, drive=None, link=None,
-        preload=True, check=True):
+        preload=True, check=True, fidelity="link"):
     """Runs chaindrive-run; returns (returncode, stdout, parsed summary dict)."""
     cmd = [paths.executable("chaindrive-run"), "--rpm", str(rpm), "--integrator", integrator,
-           "--output-step", repr(output_step), "--out", str(out_csv), "--quiet"]
+           "--output-step", repr(output_step), "--out", str(out_csv), "--quiet", "--fidelity", fidelity]
     cmd += ["--duration", repr(duration)] if duration is not None else ["--cycles", repr(cycles)]
     if rtol is not None:
         cmd += ["--rtol", repr(rtol)]

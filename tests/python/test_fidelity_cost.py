@@ -1,14 +1,15 @@
-"""The span model's cost benchmark (harness/bench/fidelity_cost.py) and its step study
-(harness/study/span_steps.py): the report's ratio, the C master's replay with the fmpy run's bits,
-and the option checks."""
+"""The span model's cost benchmark (harness/bench/fidelity_cost.py), its step study
+(harness/study/span_steps.py) and the pulse response (harness/study/pulse_response.py): the
+report's ratio, the C master's replay with the fmpy run's bits, short runs and the option checks."""
 import argparse
 import json
+import math
 
 import pytest
 
 from harness import cli
 from harness.bench import fidelity_cost
-from harness.study import span_steps
+from harness.study import pulse_response, span_steps
 
 
 def parse(module, argv):
@@ -55,3 +56,21 @@ def test_short_step_study_compares_with_the_reference(tmp_path):
     rows = found[repr(5e-5)]["rows"]
     assert {r["key"] for r in rows} >= {"tensioner.F.mean", "tensionGuide.phi.peakToPeak_deg"}
     assert "## 3000 rpm (reference: 25 us)" in (out / "steps.md").read_text()
+
+
+@pytest.mark.parametrize("argv, message", [(["--rpm", "50"], "--rpm 50"), (["--pulse", "0"], "--pulse 0")])
+def test_pulse_response_option_errors_name_the_option(argv, message, capsys):
+    with pytest.raises(SystemExit):
+        parse(pulse_response, argv)
+    assert message in capsys.readouterr().err
+
+
+def test_pulse_response_gives_each_models_mode_and_decay(tmp_path):
+    out = tmp_path / "pulse"
+    assert cli.main(["pulse-response", "--out", str(out)]) == 0
+    found = json.loads((out / "pulse.json").read_text())["fidelities"]
+    for fidelity in ("link", "span"):
+        f = found[fidelity]
+        assert f["largest_rad"] > 0.0 and f["frequency_Hz"] > pulse_response.HIGH_PASS
+        assert math.isfinite(f["decayRate_per_s"]) and max(f["envelopeOverLargest"].values()) <= 1.0
+    assert "| link |" in (out / "pulse.md").read_text()

@@ -1,0 +1,128 @@
+"""The camshafts' response to a torque pulse, link model against span model: whether a short dynamic
+run of the link model gives the span model a damping of the camshafts' mode.
+
+    python -m harness pulse-response [--rpm 3000] [--pulse 20] [--out docs/study/pulse_response]
+
+Per fidelity, two runs of the solver alone (chaindrive-run, each fidelity's default step) at a
+constant crankshaft speed with constant camshaft loads (LOAD): one plain, its twin with a pulse of
+--pulse N m on both camshafts for PULSE_LENGTH at PULSE_TIME. The response is the intake camshaft's
+timing (its angle less half the crankshaft's) in the pulsed run less the plain one, high-passed
+(HIGH_PASS, zero-phase: the slow drift the pulse leaves in the guide and the chamber removed), and
+its envelope (Hilbert). Printed and written (OUT/
+pulse.json, OUT/pulse.md): the envelope at several times after the pulse over its largest value,
+the frequency of the response's spectral peak, the decay rate and damping ratio of an exponential
+fitted over FIT, and the plain run's own high-passed motion (its RMS over the same window: the
+level the model reaches without a pulse). A model whose response falls to its own level and stays
+there, rather than decaying on, gives no modal damping to identify.
+"""
+import json
+import math
+import pathlib
+import tempfile
+
+import numpy as np
+from scipy.signal import butter, hilbert, sosfiltfilt
+
+from .. import paths, runs
+
+LOAD = 5.0                       # [N m] on each camshaft
+PULSE_TIME, PULSE_LENGTH = 0.02, 3e-4  # [s]
+AFTER = 0.05                     # [s] simulated after the pulse
+OUTPUT_STEP = 1e-5               # [s]
+HIGH_PASS = 100.0                # [Hz] leaves out the slow drift the pulse leaves (the guide, the chamber)
+FIT = (0.002, 0.02)              # [s] after the pulse
+SAMPLES = (0.002, 0.005, 0.01, 0.02, 0.04)  # [s] after the pulse
+FIDELITIES = ("link", "span")
+
+
+def add_arguments(ap):
+    ap.add_argument("--rpm", type=float, default=3000.0, help="crankshaft speed [rpm]")
+    ap.add_argument("--pulse", type=float, default=20.0, help="torque pulse on each camshaft [N m]")
+    ap.add_argument("--out", default=str(paths.RESULTS / "pulse_response"))
+
+
+def check(ap, args):
+    if not 100.0 <= args.rpm <= 7000.0:
+        ap.error(f"--rpm {args.rpm:g}: outside [100, 7000] rpm")
+    if not 0.0 < args.pulse <= 200.0:
+        ap.error(f"--pulse {args.pulse:g}: outside (0, 200] N m")
+    return args
+
+
+def write_inputs(path, rpm, pulse):
+    """The inputs' time series: constant speed and loads, the pulse between its two time pairs."""
+    w = rpm * 2.0 * math.pi / 60.0
+    end = PULSE_TIME + PULSE_LENGTH
+    rows = [(0.0, 0.0), (PULSE_TIME, 0.0), (PULSE_TIME + 1e-9, pulse), (end, pulse), (end + 1e-9, 0.0), (1.0, 0.0)]
+    lines = ["time,crankshaft.w,camshaftIntake.tau,camshaftExhaust.tau"]
+    lines += [f"{t!r},{w!r},{LOAD + p!r},{LOAD + p!r}" for t, p in rows]
+    pathlib.Path(path).write_text("\n".join(lines) + "\n")
+
+
+def timing(record):
+    return record["camshaftIntake.phi"] - 0.5 * record["crankshaft.phi"]
+
+
+def response(rpm, pulse, fidelity, work):
+    """(times after the pulse, the high-passed response, the high-passed plain run) of one fidelity."""
+    signals = {}
+    for name, p in (("plain", 0.0), ("pulsed", pulse)):
+        inputs, out = work / f"{fidelity}-{name}-inputs.csv", work / f"{fidelity}-{name}.csv"
+        write_inputs(inputs, rpm, p)
+        runs.run(out, rpm=rpm, duration=PULSE_TIME + PULSE_LENGTH + AFTER, output_step=OUTPUT_STEP,
+                 inputs_csv=inputs, fidelity=fidelity)
+        signals[name] = runs.read_csv(out)
+    t = signals["plain"]["time"]
+    sos = butter(4, HIGH_PASS, btype="highpass", fs=1.0 / OUTPUT_STEP, output="sos")
+    difference = sosfiltfilt(sos, timing(signals["pulsed"]) - timing(signals["plain"]))
+    plain = sosfiltfilt(sos, timing(signals["plain"]) - np.mean(timing(signals["plain"])))
+    after = t >= PULSE_TIME + PULSE_LENGTH
+    return t[after] - t[after][0], difference[after], plain[after]
+
+
+def figures(t, difference, plain):
+    """The envelope's course, the peak frequency, the fitted decay and the plain run's level."""
+    envelope = np.abs(hilbert(difference))
+    largest = float(envelope.max())
+    window = t <= FIT[1]
+    spectrum = np.abs(np.fft.rfft(difference[window] * np.hanning(window.sum())))
+    frequency = float(np.fft.rfftfreq(window.sum(), OUTPUT_STEP)[np.argmax(spectrum)])
+    fit = (t >= FIT[0]) & (t <= FIT[1])
+    rate = float(np.polyfit(t[fit], np.log(envelope[fit]), 1)[0])
+    return dict(largest_rad=largest, frequency_Hz=frequency, decayRate_per_s=-rate,
+                dampingRatio=-rate / (2.0 * math.pi * frequency) if frequency > 0.0 else None,
+                envelopeOverLargest={f"{s * 1e3:g} ms": float(envelope[np.searchsorted(t, s)] / largest)
+                                     for s in SAMPLES},
+                plainRmsOverLargest=float(np.sqrt(np.mean(plain ** 2)) / largest))
+
+
+def report_lines(args, found):
+    lines = ["# The camshafts' response to a torque pulse: link model against span model", "",
+             f"Command: python -m harness pulse-response {' '.join(args.argv)}", "",
+             f"Constant crankshaft speed {args.rpm:g} rpm, {LOAD:g} N m on each camshaft; the twin run's pulse "
+             f"{args.pulse:g} N m on both camshafts for {PULSE_LENGTH * 1e3:g} ms; the intake camshaft's timing "
+             f"difference high-passed at {HIGH_PASS:g} Hz (the slow drift the pulse leaves removed); its envelope after the pulse over its largest "
+             f"value; the decay fitted over {FIT[0] * 1e3:g}-{FIT[1] * 1e3:g} ms; the plain run's own high-passed "
+             f"motion (RMS) on the same scale.", "",
+             "| fidelity | largest [rad] | peak [Hz] | " + " | ".join(f"{s * 1e3:g} ms" for s in SAMPLES) +
+             " | fitted decay [1/s] | damping ratio | plain run's level |",
+             "|---|---|---|" + "---|" * len(SAMPLES) + "---|---|---|"]
+    for fidelity, f in found.items():
+        course = " | ".join(f"{v:.3f}" for v in f["envelopeOverLargest"].values())
+        lines.append(f"| {fidelity} | {f['largest_rad']:.3g} | {f['frequency_Hz']:.0f} | {course} | "
+                     f"{f['decayRate_per_s']:.0f} | {f['dampingRatio']:.3f} | {f['plainRmsOverLargest']:.3f} |")
+    return lines + [""]
+
+
+def run(args):
+    out = pathlib.Path(args.out)
+    with tempfile.TemporaryDirectory() as tmp:
+        found = {fidelity: figures(*response(args.rpm, args.pulse, fidelity, pathlib.Path(tmp)))
+                 for fidelity in FIDELITIES}
+    lines = report_lines(args, found)
+    print("\n".join(lines))
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "pulse.json").write_text(json.dumps(dict(rpm=args.rpm, pulse_Nm=args.pulse, fidelities=found),
+                                               indent=1) + "\n")
+    runs.write_lines(out / "pulse.md", lines)
+    return 0
