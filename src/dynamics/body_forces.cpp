@@ -20,7 +20,9 @@ double springEnergy(const TensionerModel& t, double spring, double stroke) {
 double addChamber(const TensionerModel& t, double stroke, double sDot, const ChamberState& chamber,
                   TensionerResult& r) {
   const HydraulicResult h =
-      hydraulicTensioner(t.hydraulic, stroke, sDot, chamber.pressure, chamber.supplyPressure, chamber.viscosity);
+      chamber.pressureIsState
+          ? hydraulicTensioner(t.hydraulic, stroke, sDot, chamber.pressure, chamber.supplyPressure, chamber.viscosity)
+          : hydraulicChamber(t.hydraulic, stroke, chamber.pressure, chamber.supplyPressure, chamber.viscosity);
   r.pressureRate = h.pressureRate;
   r.chamberPressure = h.pressure;
   r.flows = h.flows;

@@ -20,6 +20,7 @@ struct ChamberState {
   double pressure = 0.0;        // [Pa]
   double supplyPressure = 0.0;  // [Pa]
   double viscosity = 0.0;       // [Pa s]
+  bool pressureIsState = true;  // false: the caller integrates another state (no pressure rate)
 };
 
 struct InputValues {

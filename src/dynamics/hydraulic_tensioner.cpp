@@ -70,20 +70,30 @@ double valveFlow(const ValveDesc& v, double dp, double density) {
   return v.dischargeCoefficient * area * std::sqrt(2.0 * v.laminarPressure / density) * (dp / v.laminarPressure);
 }
 
+HydraulicResult hydraulicChamber(const HydraulicTensionerDesc& t, double stroke, double pressure,
+                                 double supplyPressure, double viscosity) {
+  const OilDesc& oil = t.oil;
+  const double p = std::max(pressure, floorPressure(oil));  // a step may end a hair below the floor
+  HydraulicResult r;
+  r.flows.check = valveFlow(t.checkValve, supplyPressure - p, oil.density);
+  r.flows.leak = leakConductance(t, viscosity) * p;
+  r.flows.relief = valveFlow(t.reliefValve, p, oil.density);  // to the atmosphere
+  r.pressure = p;
+  r.force = std::max(0.0, p * plungerArea(t) + endStopForce(t, stroke));
+  r.supplyPower = supplyPressure * r.flows.check;
+  r.dissipatedPower = r.flows.check * (supplyPressure - p) + r.flows.leak * p + r.flows.relief * p;
+  return r;
+}
+
 HydraulicResult hydraulicTensioner(const HydraulicTensionerDesc& t, double stroke, double rate, double pressure,
                                    double supplyPressure, double viscosity) {
   const OilDesc& oil = t.oil;
   const double area = plungerArea(t);
   const double volume = chamberVolume(t, stroke);
   const double floor = floorPressure(oil);
-  const double p = std::max(pressure, floor);  // a step may end a hair below the floor
-
-  HydraulicResult r;
-  r.flows.check = valveFlow(t.checkValve, supplyPressure - p, oil.density);
-  r.flows.leak = leakConductance(t, viscosity) * p;
-  r.flows.relief = valveFlow(t.reliefValve, p, oil.density);  // to the atmosphere
+  HydraulicResult r = hydraulicChamber(t, stroke, pressure, supplyPressure, viscosity);
+  const double p = r.pressure;
   const double net = r.flows.check - r.flows.leak - r.flows.relief - area * rate;
-  r.pressure = p;
   if (pressure > floor) {
     r.pressureRate = effectiveBulkModulus(oil, p) / volume * net;
   } else {
@@ -97,9 +107,6 @@ HydraulicResult hydraulicTensioner(const HydraulicTensionerDesc& t, double strok
     r.vapourVolume = (floor - pressure) * volume / kFloor;
     r.pressureRate = (kFloor * net + (floor - pressure) * area * rate) / volume;
   }
-  r.force = std::max(0.0, p * area + endStopForce(t, stroke));
-  r.supplyPower = supplyPressure * r.flows.check;
-  r.dissipatedPower = r.flows.check * (supplyPressure - p) + r.flows.leak * p + r.flows.relief * p;
   return r;
 }
 

@@ -66,5 +66,10 @@ double valveFlow(const ValveDesc& v, double dp, double density);
 /// (HydraulicResult::pressure). Integrate dp/dt = pressureRate in either case.
 HydraulicResult hydraulicTensioner(const HydraulicTensionerDesc& t, double stroke, double rate, double pressure,
                                    double supplyPressure, double viscosity);
+/// hydraulicTensioner without the state's rate (pressureRate, vapourVolume and flows.vapour 0):
+/// the force, the valves' and the leak's flows and the powers at the chamber's pressure, for a
+/// caller whose state is not the pressure (the span model's oil content, span/chamber_oil.h).
+HydraulicResult hydraulicChamber(const HydraulicTensionerDesc& t, double stroke, double pressure,
+                                 double supplyPressure, double viscosity);
 
 }  // namespace chaindrive

@@ -12,6 +12,7 @@ SpanData::SpanData(const SpanModel& m) {
   const std::size_t nr = m.links->rotors.size();
   inputs.loadTorque.assign(nr, 0.0);
   chamber.viscosity = tensionerOilViscosity(m.links->tensioner);
+  chamber.pressureIsState = false;  // the state is the oil content (chamber_oil.h)
   rotorAngle.assign(nr, 0.0);
   rotorRate.assign(nr, 0.0);
   rotorCos.assign(nr, 1.0);
