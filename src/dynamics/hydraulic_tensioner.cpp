@@ -46,11 +46,15 @@ double oilViscosity(const OilDesc& oil, double temperature) {
 // air of volume a(p) = alpha (p_atm / p_abs)^(1/n), compressed polytropically (its modulus n p_abs)
 // in parallel with the oil (modulus K): K_eff = (1 + a) / (1 / K + a / (n p_abs)). The oil's own
 // volume change is left out of the mixture's volume (it is below 1 % up to 100 bar).
+FreeAir freeAir(const OilDesc& oil, double pressure) {
+  const double pAbs = std::max(pressure + oil.atmosphericPressure, oil.vapourPressure);
+  return {pAbs, oil.airFraction * math::pow(oil.atmosphericPressure / pAbs, 1.0 / oil.polytropicExponent)};
+}
+
 double effectiveBulkModulus(const OilDesc& oil, double pressure) {
   if (oil.airFraction <= 0.0) return oil.bulkModulus;
-  const double pAbs = std::max(pressure + oil.atmosphericPressure, oil.vapourPressure);
-  const double air = oil.airFraction * math::pow(oil.atmosphericPressure / pAbs, 1.0 / oil.polytropicExponent);
-  return (1.0 + air) / (1.0 / oil.bulkModulus + air / (oil.polytropicExponent * pAbs));
+  const FreeAir a = freeAir(oil, pressure);
+  return (1.0 + a.perOil) / (1.0 / oil.bulkModulus + a.perOil / (oil.polytropicExponent * a.absolutePressure));
 }
 
 // Laminar flow through the annular gap of an eccentric plunger: pi d h^3 / (12 mu L) (1 + 1.5 e^2).

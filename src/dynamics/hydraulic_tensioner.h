@@ -51,8 +51,14 @@ double plungerArea(const HydraulicTensionerDesc& t);
 double chamberVolume(const HydraulicTensionerDesc& t, double stroke);
 /// Vogel's law: the oil's dynamic viscosity [Pa s] at temperature [K] (within the law's range).
 double oilViscosity(const OilDesc& oil, double temperature);
-/// The effective bulk modulus [Pa] of the oil with its entrained air at gauge pressure p (the
-/// absolute pressure taken at least the vapour pressure).
+/// The oil's entrained air at gauge pressure p: the absolute pressure [Pa] (at least the vapour
+/// pressure) and the free air per unit volume of oil there, a = alpha (p_atm / p_abs)^(1/n).
+struct FreeAir {
+  double absolutePressure;
+  double perOil;
+};
+FreeAir freeAir(const OilDesc& oil, double pressure);
+/// The effective bulk modulus [Pa] of the oil with its entrained air at gauge pressure p.
 double effectiveBulkModulus(const OilDesc& oil, double pressure);
 /// The leak gap's conductance [m3/(s Pa)]: Q_leak = leakConductance * p.
 double leakConductance(const HydraulicTensionerDesc& t, double viscosity);

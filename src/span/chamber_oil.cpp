@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/hydraulic_tensioner.h"
 #include "math/elementary.h"
 
 namespace chaindrive::span {
@@ -15,15 +16,13 @@ constexpr int kIntervals = 4096;
 }  // namespace
 
 double ChamberOilLaw::volumeRatio(double pressure) const {
-  const double pAbs = std::max(pressure + oil_.atmosphericPressure, oil_.vapourPressure);
-  const double air = oil_.airFraction * math::pow(oil_.atmosphericPressure / pAbs, 1.0 / oil_.polytropicExponent);
+  const double air = freeAir(oil_, pressure).perOil;
   return (1.0 + air) / (1.0 + oil_.airFraction) * math::exp(-pressure / oil_.bulkModulus);
 }
 
 double ChamberOilLaw::dPressureDLogRatio(double pressure) const {
-  const double pAbs = std::max(pressure + oil_.atmosphericPressure, oil_.vapourPressure);
-  const double air = oil_.airFraction * math::pow(oil_.atmosphericPressure / pAbs, 1.0 / oil_.polytropicExponent);
-  return -1.0 / (1.0 / oil_.bulkModulus + air / (oil_.polytropicExponent * pAbs * (1.0 + air)));
+  const FreeAir a = freeAir(oil_, pressure);
+  return -1.0 / (1.0 / oil_.bulkModulus + a.perOil / (oil_.polytropicExponent * a.absolutePressure * (1.0 + a.perOil)));
 }
 
 // The nodes equally spaced in ln v from the top pressure to the floor; each node's pressure by
