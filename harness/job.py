@@ -101,6 +101,8 @@ class RunConfig:
     strict: bool = False                 # a missed check (harness/checks.py) makes the exit status 1
     supply_pressure: float = SUPPLY_PRESSURE  # [Pa] gauge, FMU input tensioner.supplyPressure (held)
     oil_temperature: float = OIL_TEMPERATURE  # [K] FMU parameter tensioner.oilTemperature
+    speed_perturbation: float = 0.0      # relative change of the crankshaft-speed input (a replica's, harness/replicas.py)
+    replicas: int = 1                    # runs of the ensemble (harness/replicas.py); 1: the run alone
     notes: tuple = ()                    # note lines on the options (given, but without effect on this drive)
 
 
@@ -148,12 +150,13 @@ def parameters_of(config):
     return p
 
 
-def table_inputs(torque, speed, supply_pressure=SUPPLY_PRESSURE):
+def table_inputs(torque, speed, supply_pressure=SUPPLY_PRESSURE, speed_factor=1.0):
     """The closed loop's inputs from the tables of one engine speed: a function of (time, crank
     angle, intake and exhaust camshaft angles in crank degrees) giving the FMU's inputs; the oil
-    supply pressure [Pa] held constant (the gallery's pressure changes slowly against a cycle)."""
+    supply pressure [Pa] held constant (the gallery's pressure changes slowly against a cycle); the
+    crankshaft speed times speed_factor (a replica's perturbation)."""
     def inputs(t, crank_deg, intake_deg, exhaust_deg):
-        return {"crankshaft.w": speed_at(speed, crank_deg),
+        return {"crankshaft.w": speed_factor * speed_at(speed, crank_deg),
                 "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", intake_deg)),
                 "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", exhaust_deg)),
                 "tensioner.supplyPressure": supply_pressure}
@@ -206,6 +209,7 @@ def run_open(config, duration, torque, speed):
     arr["time"] = ts["time"]
     for n in names:
         arr[n] = ts[n]
+    arr["crankshaft.w"] *= 1.0 + config.speed_perturbation
     arr[supply] = config.supply_pressure
     prog = Progress(duration, "open loop")
     res = simulate_fmu(str(fmu.fmu_path()), stop_time=duration, output_interval=config.step, input=arr,
@@ -213,7 +217,7 @@ def run_open(config, duration, torque, speed):
     prog.done()
     out = {n: np.asarray(res[n], dtype=float) for n in res.dtype.names}
     for n in names:
-        out["input." + n] = np.interp(out["time"], ts["time"], ts[n])
+        out["input." + n] = np.interp(out["time"], arr["time"], arr[n])
     return out, None
 
 
@@ -235,6 +239,11 @@ def add_arguments(ap):
     ap.add_argument("--run-in", type=int, help=f"engine cycles discarded before the first counted one (default: "
                     f"at least {RUN_IN_CYCLES} and at least {RUN_IN_TIME:g} s)", metavar="CYCLES")
     ap.add_argument("--coupling", choices=COUPLINGS, default=COUPLINGS[0])
+    ap.add_argument("--replicas", type=int, default=1, metavar="K",
+                    help="K runs, replica k with the crankshaft-speed input perturbed by a factor 1 + k * 1e-9: "
+                    "summary.json then holds the ensemble's statistics, each interval from the spread between "
+                    "the replicas' means (harness/replicas.py), and each replica's outputs are in replica<k>/ "
+                    "(default 1: the run alone)")
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
     ap.add_argument("--step", type=float, default=COMMUNICATION_STEP, help="communication step [s]")
     ap.add_argument("--newmark-gamma", type=float, default=NEWMARK_GAMMA,
@@ -299,6 +308,8 @@ def config_of(ap, args):
     where not given); misuse reported by ap.error."""
     if args.cycles < 2:
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
+    if args.replicas < 1:
+        ap.error(f"--replicas {args.replicas}: at least 1 run")
     if args.run_in is not None and args.run_in < 0:
         ap.error(f"--run-in {args.run_in}: must be >= 0 cycles")
     if not args.step > 0.0:
@@ -379,12 +390,15 @@ def simulate(config, progress=True):
           f"{config.run_in} + {config.cycles} engine cycles ({duration * 1e3:.1f} ms), {config.coupling}-loop "
           f"coupling, communication step {config.step * 1e6:g} us, {config.method} at {config.solver_step * 1e6:g} us")
     print(f"tables: {torque.path} ({torque.provenance})")
+    if config.speed_perturbation:
+        print(f"crankshaft speed input perturbed by a factor 1 {config.speed_perturbation:+.3g} (a replica)")
     if is_hydraulic(drive_json(config.drive)):
         print(f"hydraulic tensioner: oil supply {config.supply_pressure / BAR:g} bar (gauge), "
               f"{config.oil_temperature - ZERO_CELSIUS:g} degC")
     cpu0 = time.process_time()
     if config.coupling == "closed":
-        d, step_cpus = run_closed(config, duration, table_inputs(torque, speed, config.supply_pressure), progress)
+        inputs = table_inputs(torque, speed, config.supply_pressure, 1.0 + config.speed_perturbation)
+        d, step_cpus = run_closed(config, duration, inputs, progress)
     else:
         d, step_cpus = run_open(config, duration, torque, speed)
     return SceneRun(d, config.run_in, duration, time.process_time() - cpu0, step_cpus)

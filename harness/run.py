@@ -8,7 +8,7 @@ The options --rpm, --method, --solver-step, --rtol, --out and --strict are both 
 the scene's own. The other options are one scene's; the timing drive's are refused by the CVT
 scene when set.
 """
-from . import defaults, job, paths
+from . import defaults, job, paths, replicas
 from .cvt import job as cvt_job
 
 JOBS = {"timing": job, "cvt": cvt_job}  # --scene: its job's module
@@ -46,4 +46,4 @@ def run(config):
     """Runs the job the configuration is for."""
     if isinstance(config, cvt_job.CVTConfig):
         return cvt_job.run(config)
-    return job.run(config)
+    return replicas.run(config) if config.replicas > 1 else job.run(config)

@@ -4,7 +4,7 @@ communication steps, and the accuracy of the same runs against a reference, at e
 
     python -m harness bench-realtime [--rpm 3000 6000] [--cycles 24] [--repeats 2]
                                      [--method fixed-verlet-implicit-joint-damping] [--solver-step 3.5714e-6]
-                                     [--newmark-gamma G] [--reference RPM=SUMMARY.json ...]
+                                     [--newmark-gamma G] [--reference RPM=SUMMARY.json ...] [--replicas K]
                                      [--out results/benchmark_realtime.md]
 
 The default is the real-time method: fixed-verlet-implicit-joint-damping at 1e-4 / 28 s (3.57 us,
@@ -24,6 +24,10 @@ model (the per-step minimum; judged against the targets, TARGETS) and of the fir
 (the machine's interruptions included). With a reference for the speed (the summary.json of
 `python -m harness run --out DIR`, for example a long run at a small step), the accuracy table: per quantity the reference and this
 run with their 95 % half-widths over engine cycles, the difference and the tolerance (TOLERANCES).
+With --replicas K the accuracy is that of an ensemble (harness/replicas.py): the first timed run
+and K - 1 runs with the crankshaft-speed input perturbed, each interval from the spread between
+their means (at 6000 rpm with the hydraulic tensioner, one run's intervals understate the guide's
+peak-to-peak's; compare with a reference made the same way, `python -m harness run --replicas K`).
 The machine heads the report, which is also written as Markdown to --out. Run nothing else on
 the machine meanwhile: CPU timings of shared cores are noisy (compare medians and ratios of one run).
 
@@ -39,7 +43,7 @@ import tempfile
 
 import numpy as np
 
-from .. import job, paths, runs
+from .. import job, paths, replicas, runs
 from ..drive.description import drive_json
 from ..study import ladder
 
@@ -58,6 +62,9 @@ TOLERANCES = ("tensioner.F.mean=2%", "chain.Ftight.mean=2%", "chain.Fslack.mean=
 def add_arguments(ap):
     ap.add_argument("--rpm", type=float, nargs="+", default=[3000.0, 6000.0], help="engine speeds [rpm]")
     ap.add_argument("--cycles", type=int, default=24, help="engine cycles counted after the run-in")
+    ap.add_argument("--replicas", type=int, default=1, metavar="K",
+                    help="the accuracy over K runs: the first timed run and K - 1 with the crankshaft-speed input "
+                    "perturbed (harness/replicas.py; default 1)")
     ap.add_argument("--repeats", type=int, default=2,
                     help="runs per speed (bit-identical; their per-step minimum is the model's cost per step)")
     ap.add_argument("--method", default=job.REALTIME_METHOD, help="FMU parameter solver.method")
@@ -85,6 +92,8 @@ def check(ap, args):
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
     if args.repeats < 1:
         ap.error(f"--repeats {args.repeats}: at least 1 run per speed")
+    if args.replicas < 1:
+        ap.error(f"--replicas {args.replicas}: at least 1 run per speed")
     return args
 
 
@@ -161,6 +170,12 @@ def timing_lines(rpm, t, step):
             f"{t['by_angle']:.2f} over the cycle"]
 
 
+def cycles_cell(stat):
+    """The cycles a statistic is over: "480 cycles", or "4 x 480 cycles" of an ensemble."""
+    k = stat.get("replicas", 1)
+    return f"{stat['cycles']} cycles" if k == 1 else f"{k} x {stat['cycles'] // k} cycles"
+
+
 def accuracy_lines(reference, summary):
     keys = list(summary)
     tolerances = [ladder.parse_tolerance(t, keys) for t in TOLERANCES]
@@ -168,12 +183,20 @@ def accuracy_lines(reference, summary):
     lines = ["| quantity | reference | this run | difference | tolerance | meets | within scatter |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
-        ref, run = r["link"], r["span"]
-        lines.append(f"| {r['key']} | {ref['mean']:.4g} +- {ref['ci95']:.2g} {r['unit']} ({ref['cycles']} cycles) | "
-                     f"{run['mean']:.4g} +- {run['ci95']:.2g} {r['unit']} ({run['cycles']} cycles) | "
+        ref, run = (dict(r[side], cells=cycles_cell(summary_of[r["key"]])) for side, summary_of in
+                    (("link", reference), ("span", summary)))
+        lines.append(f"| {r['key']} | {ref['mean']:.4g} +- {ref['ci95']:.2g} {r['unit']} ({ref['cells']}) | "
+                     f"{run['mean']:.4g} +- {run['ci95']:.2g} {r['unit']} ({run['cells']}) | "
                      f"{r['difference']:+.2f} {r['differenceUnit']} | {r['tolerance']:g} {r['differenceUnit']} | "
                      f"{'yes' if r['meets'] else 'NO'} | {'yes' if r['withinScatter'] else 'no'} (z {r['z']:+.2f}) |")
     return lines
+
+
+def ensemble_summary(config, first, count):
+    """The ensemble's summary of the first run's (first) and count - 1 perturbed replicas'."""
+    summaries = [first] + [job.cycle_statistics(c, job.simulate(c))[1]
+                           for c in (replicas.replica_config(config, k) for k in range(1, count))]
+    return replicas.combine(summaries)
 
 
 def difference(scene_runs):
@@ -206,6 +229,9 @@ def run(args):
         section += timing_lines(rpm, timing(scene_runs, steps_per_cycle), config.step) + [""]
         reference = args.references.get(rpm)
         if reference:
+            if args.replicas > 1:
+                summary = ensemble_summary(config, summary, args.replicas)
+                section.append(f"Accuracy over {args.replicas} replicas (harness/replicas.py):")
             section += accuracy_lines(reference, summary) + [""]
         print("\n".join(section))
         lines += section

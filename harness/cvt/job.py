@@ -50,7 +50,7 @@ OUTPUT_STEP = 5e-5          # [s]
 # link fidelity) has no use for them, so they are refused when set
 TIMING_OPTIONS = (("--drive", "drive", None), ("--fidelity", "fidelity", "link"), ("--coupling", "coupling", "closed"),
                   ("--tables", "tables", None), ("--supply-pressure-bar", "supply_pressure_bar", None),
-                  ("--oil-temperature-c", "oil_temperature_c", None))
+                  ("--oil-temperature-c", "oil_temperature_c", None), ("--replicas", "replicas", 1))
 
 # per-revolution quantities: (CSV column, unit)
 QUANTITIES = {"slip": ("slip", ""), "drivenSpeed": ("drivenSpeed", "rad/s"),
