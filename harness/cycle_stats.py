@@ -179,9 +179,15 @@ def interval(values, confidence=0.95):
     r1 = lag1_autocorrelation(x)
     n_eff = n * (1.0 - r1) / (1.0 + r1) if r1 > 0 else float(n)
     n_eff = max(n_eff, 2.0)  # see the module docstring: no fewer than two effective cycles
+    return mean, student_half_width(x, n_eff, confidence), n_eff
+
+
+def student_half_width(x, n_eff, confidence=0.95):
+    """Student's t half-width of the mean of values x (two or more) worth n_eff independent ones:
+    t_(confidence, n_eff - 1) s / sqrt(n_eff), s their sample standard deviation."""
     from scipy import stats as scistats  # (here: scipy.stats takes half a second to import)
     t = float(scistats.t.ppf(0.5 + 0.5 * confidence, n_eff - 1.0))
-    return mean, t * float(np.std(x, ddof=1)) / math.sqrt(n_eff), n_eff
+    return t * float(np.std(x, ddof=1)) / math.sqrt(n_eff)
 
 
 def summarize(per_cycle_values):

@@ -50,11 +50,9 @@ def combine_quantity(stats):
     k = len(means)
     within = math.sqrt(sum(s["ci95"] ** 2 for s in stats)) / k
     between = ratio = math.nan
-    if k >= 2:
-        from scipy import stats as scistats  # (here: scipy.stats takes half a second to import)
-        spread = float(np.std(means, ddof=1))
-        between = float(scistats.t.ppf(0.975, k - 1)) * spread / math.sqrt(k)
-        ratio = spread / (within * math.sqrt(k) / Z95) if within > 0 else math.nan
+    if k >= 2:  # (independent runs: no autocorrelation to correct for)
+        between = cycle_stats.student_half_width(means, float(k))
+        ratio = float(np.std(means, ddof=1)) / (within * math.sqrt(k) / Z95) if within > 0 else math.nan
     half = max(between, within) if not math.isnan(between) else within
     return {"mean": float(means.mean()), "ci95": half, "cycles": int(sum(s["cycles"] for s in stats)),
             "unit": stats[0]["unit"], "replicas": k, "betweenRuns": between, "withinRuns": within,

@@ -183,10 +183,10 @@ def accuracy_lines(reference, summary):
     lines = ["| quantity | reference | this run | difference | tolerance | meets | within scatter |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
-        ref, run = (dict(r[side], cells=cycles_cell(summary_of[r["key"]])) for side, summary_of in
-                    (("link", reference), ("span", summary)))
-        lines.append(f"| {r['key']} | {ref['mean']:.4g} +- {ref['ci95']:.2g} {r['unit']} ({ref['cells']}) | "
-                     f"{run['mean']:.4g} +- {run['ci95']:.2g} {r['unit']} ({run['cells']}) | "
+        ref, run = r["link"], r["span"]
+        ref_cycles, run_cycles = cycles_cell(reference[r["key"]]), cycles_cell(summary[r["key"]])
+        lines.append(f"| {r['key']} | {ref['mean']:.4g} +- {ref['ci95']:.2g} {r['unit']} ({ref_cycles}) | "
+                     f"{run['mean']:.4g} +- {run['ci95']:.2g} {r['unit']} ({run_cycles}) | "
                      f"{r['difference']:+.2f} {r['differenceUnit']} | {r['tolerance']:g} {r['differenceUnit']} | "
                      f"{'yes' if r['meets'] else 'NO'} | {'yes' if r['withinScatter'] else 'no'} (z {r['z']:+.2f}) |")
     return lines
