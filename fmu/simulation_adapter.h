@@ -364,15 +364,16 @@ class SimulationAdapter {
     if (auto parsed = choiceOf<E>(name)) value = *parsed;
     else problems.push_back(std::string(parameter) + ": " + unknownChoiceText(name, choiceNames<E>()));
   }
-  /// The same for a parameter whose empty name leaves the choice to the description (nullopt).
+  /// The same for a parameter whose empty name leaves the choice to the description (nullopt), or
+  /// to what `emptyMeans` names.
   template <class E>
   static void parseChoiceParameter(const char* parameter, const std::string& name, std::optional<E>& value,
-                                   std::vector<std::string>& problems) {
+                                   std::vector<std::string>& problems, const char* emptyMeans = nullptr) {
     value.reset();
     if (name.empty()) return;
     if (auto parsed = choiceOf<E>(name)) value = *parsed;
-    else problems.push_back(std::string(parameter) + ": " + unknownChoiceText(name, choiceNames<E>()) +
-                            " (or empty: the " + Derived::kModelWord + "'s)");
+    else problems.push_back(std::string(parameter) + ": " + unknownChoiceText(name, choiceNames<E>()) + " (or empty: " +
+                            (emptyMeans ? std::string(emptyMeans) : "the " + std::string(Derived::kModelWord) + "'s") + ")");
   }
 
   /// The combination rules of a run's choices (run/simulation.h) for `opt` on model_, each one

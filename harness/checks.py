@@ -4,10 +4,13 @@ used outside the accuracy it was checked for), also written to the run's JSON.
 
 The timing drive's check is its energy balance over the counted cycles: the input work equals the
 dissipated energy plus the change of kinetic and elastic energy. The explicit schemes' balance
-error grows with the step and the speed; at the default step it measured 0.5 % at 1000 rpm, 1.3 %
-at 3000 rpm and 2.7 % at 6000 rpm, with the real-time method 2.4 % at 3000 rpm, all with cycle
-statistics within the scatter of their finer references (docs/study/report.md): the limit keeps a
-factor of about 2 above them. (The CVT's checks: harness/cvt/job.py.)
+error grows with the step and the speed; with the spring-damper tensioner plain Verlet at 2.5 us
+measured 0.5 % at 1000 rpm, 1.3 % at 3000 rpm and 2.7 % at 6000 rpm, the real-time method 2.4 % at
+3000 rpm, all with cycle statistics within the scatter of their finer references
+(docs/study/report.md). With the hydraulic tensioner the real-time method, the link fidelity's
+default, measured 1.6 % at 3000 rpm and 4.7 % at 6000 rpm, its statistics within the scatter of
+the finer ensembles (docs/study/hydraulic_steps.md): near the limit at 6000 rpm, so a faster
+engine warns. (The CVT's checks: harness/cvt/job.py.)
 """
 import json
 import math

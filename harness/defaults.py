@@ -20,21 +20,46 @@ class Solver:
 
 
 @functools.cache
-def table():
-    """{scene: {fidelity: Solver}} as the build's chaindrive-info prints it."""
+def printed():
+    """The table as the build's chaindrive-info prints it: {scene: {fidelity: row}}, the row of drives
+    with joints with clearance or rigid contacts under its fidelity's as "clearanceOrRigid"."""
     text = subprocess.run([paths.executable("chaindrive-info"), "--defaults"], capture_output=True, text=True,
                           check=True).stdout
-    return {scene: {fidelity: Solver(row["method"], row["step_s"], row["tolerance"]) for fidelity, row in rows.items()}
-            for scene, rows in json.loads(text).items()}
+    return json.loads(text)
 
 
-def solver(scene, fidelity="link"):
-    """The defaults of a scene ("timing" or "cvt") and fidelity ("link" or "span")."""
-    return table()[scene][fidelity]
+def solver_of(row):
+    return Solver(row["method"], row["step_s"], row["tolerance"])
+
+
+@functools.cache
+def table():
+    """{scene: {fidelity: Solver}}."""
+    return {scene: {fidelity: solver_of(row) for fidelity, row in rows.items()} for scene, rows in printed().items()}
+
+
+def solver(scene, fidelity="link", clearance_or_rigid=False):
+    """The defaults of a scene ("timing" or "cvt") and fidelity ("link" or "span"), for a drive whose
+    joints have clearance or whose contacts are rigid where the table has a row for them (the link
+    fidelity's real-time method needs joints without clearance and integrates compliant contacts)."""
+    row = printed()[scene][fidelity]
+    return solver_of(row["clearanceOrRigid"] if clearance_or_rigid and "clearanceOrRigid" in row else row)
+
+
+def step_for(scene, fidelity, method, clearance_or_rigid=False):
+    """The fixed step [s] of `method` where none is given (run/defaults.h: defaultStep): the own row's
+    for its method, else the step of the scene and fidelity's row of that method, else that of its
+    row for joints with clearance or rigid contacts (plain Verlet's checked step), else the own row's."""
+    own = solver(scene, fidelity, clearance_or_rigid)
+    if method == own.method:
+        return own.step
+    row = printed()[scene][fidelity]
+    rows = [row] + ([row["clearanceOrRigid"]] if "clearanceOrRigid" in row else [])
+    return next((r["step_s"] for r in rows if r["method"] == method), solver(scene, fidelity, True).step)
 
 
 def described(scene):
-    """The scene's defaults in words for help texts: "link fixed-verlet at 2.5e-06 s, span ..."."""
+    """The scene's defaults in words for help texts: "link: fixed-verlet-implicit-joint-damping at 3.57143e-06 s, span: ..."."""
     try:
         rows = table()[scene]
     except (FileNotFoundError, subprocess.CalledProcessError):  # (not built yet: the help still shows)

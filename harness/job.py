@@ -34,7 +34,7 @@ Two couplings:
                     fmpy.simulate_fmu as input.
 
     python -m harness run [--rpm 3000] [--fidelity link|span] [--cycles N] [--run-in CYCLES]
-                          [--coupling closed|open] [--step 1e-4] [--method fixed-verlet]
+                          [--coupling closed|open] [--step 1e-4] [--method M]
                           [--solver-step S] [--newmark-gamma G] [--drive FILE] [--out results]
                           [--supply-pressure-bar 3] [--oil-temperature-c 90]
 
@@ -51,7 +51,7 @@ import time
 import numpy as np
 
 from . import checks, cycle_stats, defaults, paths
-from .drive.description import drive_json, is_hydraulic, meshing_order, oil_temperature_range
+from .drive.description import clearance_or_rigid, drive_json, is_hydraulic, meshing_order, oil_temperature_range
 from .errors import UserError
 from .fmu import fmu
 from .plots import drive_picture, plots
@@ -106,15 +106,26 @@ class RunConfig:
     notes: tuple = ()                    # note lines on the options (given, but without effect on this drive)
 
 
+def drive_clearance_or_rigid(path):
+    """Whether the drive file's joints have clearance or its contacts are rigid (False for the default
+    drive, and for a file that cannot be read: the run's own checks name that problem)."""
+    try:
+        return path is not None and clearance_or_rigid(drive_json(path))
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
 def run_config(**options):
     """A RunConfig from options named as its fields (None or left out: the default), with the
     defaults that depend on other options: the run-in from the speed (run_in_cycles), the solver
     from the fidelity (harness/defaults.py)."""
     given = {name: value for name, value in options.items() if value is not None}
     rpm, fidelity = given.get("rpm", DEFAULT_RPM), given.get("fidelity", FIDELITIES[0])
-    solver = defaults.solver("timing", fidelity)
-    return RunConfig(**{"run_in": run_in_cycles(rpm), "solver_step": solver.step, "method": solver.method,
-                        "rtol": solver.tolerance, **given})
+    plain = drive_clearance_or_rigid(given.get("drive"))
+    solver = defaults.solver("timing", fidelity, clearance_or_rigid=plain)
+    method = given.get("method", solver.method)
+    return RunConfig(**{"run_in": run_in_cycles(rpm), "method": method, "rtol": solver.tolerance,
+                        "solver_step": defaults.step_for("timing", fidelity, method, plain), **given})
 
 
 class Progress:

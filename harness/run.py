@@ -28,7 +28,8 @@ def add_arguments(ap):
                     "--solver-step)")
     ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default per scene and fidelity, "
                     f"the same in every entry point: timing {defaults.described('timing')}; cvt "
-                    f"{defaults.described('cvt')})")
+                    f"{defaults.described('cvt')}; a drive whose joints have clearance or whose contacts are rigid: "
+                    "the table's row for it; a method named without a step: its row's step, else that row's)")
     ap.add_argument("--rtol", type=float, help="FMU parameter solver.tolerance (default: the scene's and fidelity's)")
     ap.add_argument("--out", default=str(paths.RESULTS), help="output directory")
     ap.add_argument("--strict", action="store_true", help="exit status 1 when one of the run's checks (energy and "

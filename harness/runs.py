@@ -16,12 +16,15 @@ def read_csv(path):
     return {name: data[:, i] for i, name in enumerate(header)}
 
 
-def run(out_csv, rpm=3000.0, cycles=2.0, duration=None, integrator="fixed-verlet", rtol=None, step=None,
+def run(out_csv, rpm=3000.0, cycles=2.0, duration=None, integrator=None, rtol=None, step=None,
         output_step=1e-4, inputs_csv=None, loads=None, crank_vibration=None, drive=None, link=None,
         preload=True, check=True, fidelity="link"):
-    """Runs chaindrive-run; returns (returncode, stdout, parsed summary dict)."""
-    cmd = [paths.executable("chaindrive-run"), "--rpm", str(rpm), "--integrator", integrator,
-           "--output-step", repr(output_step), "--out", str(out_csv), "--quiet", "--fidelity", fidelity]
+    """Runs chaindrive-run; returns (returncode, stdout, parsed summary dict). Without integrator,
+    rtol or step: chaindrive-run's defaults (the fidelity's own, src/run/defaults.h)."""
+    cmd = [paths.executable("chaindrive-run"), "--rpm", str(rpm), "--output-step", repr(output_step),
+           "--out", str(out_csv), "--quiet", "--fidelity", fidelity]
+    if integrator is not None:
+        cmd += ["--integrator", integrator]
     cmd += ["--duration", repr(duration)] if duration is not None else ["--cycles", repr(cycles)]
     if rtol is not None:
         cmd += ["--rtol", repr(rtol)]

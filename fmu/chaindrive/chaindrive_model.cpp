@@ -92,7 +92,7 @@ bool ChainDriveModel::parametersValid() {
 // combine is checked with the drive (buildModel).
 void ChainDriveModel::parseChoices(std::vector<std::string>& problems) {
   parseChoiceParameter("fidelity", params_.fidelity, choices_.fidelity, problems);
-  parseChoiceParameter("solver.method", params_.method, choices_.method, problems);
+  parseChoiceParameter("solver.method", params_.method, choices_.method, problems, "the fidelity's own");
   parseChoiceParameter("contact.method", params_.contactMethod, choices_.contacts, problems);
   parseChoiceParameter("chain.jointModel", params_.jointModel, choices_.joints, problems);
 }
@@ -192,14 +192,17 @@ bool ChainDriveModel::assignRoles(const Model& m) {
 SimulationOptions ChainDriveModel::simulationOptions() const {
   SimulationOptions opt;
   opt.fidelity = choices_.fidelity;
-  opt.integrator.method = choices_.method;
+  opt.contactMethod = choices_.contacts;
+  // solver.method empty and solver.step 0: the fidelity's own (run/defaults.h: the row of runs
+  // with joints with clearance or rigid contacts, or not), as the command-line tools and the
+  // harness take them
+  const SolverDefaults& own =
+      model_ ? ownSolverDefaults(*model_, opt) : solverDefaults(Scene::TimingDrive, opt.fidelity);
+  opt.integrator.method = choices_.method.value_or(own.method);
   opt.integrator.adaptive.rtol = params_.tolerance;
-  // solver.step 0: the fidelity's own step (run/defaults.h), as the command-line tools and the harness take it
-  opt.integrator.fixed.step =
-      params_.step > 0.0 ? params_.step : solverDefaults(Scene::TimingDrive, choices_.fidelity).step;
+  opt.integrator.fixed.step = params_.step > 0.0 ? params_.step : defaultStep(own, opt.integrator.method);
   opt.integrator.newmark.gamma = params_.newmarkGamma;
   opt.integrator.adaptive.stopAtOutputs = true;
-  opt.contactMethod = choices_.contacts;
   opt.jointModel = choices_.joints;
   opt.preload.enabled = params_.preload;
   opt.monitoredLink = params_.linkIndex;

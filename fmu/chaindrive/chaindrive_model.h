@@ -32,8 +32,9 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   // ---- the hooks (adapter_contract.h) ----
   static constexpr ModelDescription kDescription = {kModelIdentifier, kGuid, findVariable, kSolverTime, kSolverSteps};
   static constexpr const char* kModelWord = "drive";  // (what a state must have been taken of)
-  // '3': the link states laid out component by component (src/assembly/model.h)
-  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '3'};
+  // '4': a hydraulic chamber's state is its oil content ('3': its pressure; the link states laid
+  // out component by component since '3', src/assembly/model.h)
+  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '4'};
 
   // the steps of prepare(): the drive, the roles of its rotors and the start state at host.time()
   bool parametersValid();
@@ -62,8 +63,8 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   struct Parameters {
     std::string driveFile;
     int linkIndex = -1;
-    // the defaults of the link fidelity (run/defaults.h); the step is the fidelity's own when 0
-    std::string method = choiceName(solverDefaults(Scene::TimingDrive).method);
+    // the defaults (run/defaults.h): the method and the step are the fidelity's own when empty and 0
+    std::string method;
     std::string contactMethod;  // "": the drive's
     std::string jointModel;     // "": the drive's
     std::string fidelity = "link";  // "link" or "span" (SimulationOptions::fidelity)
@@ -78,7 +79,7 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
 
   /// The choice parameters parsed (parametersValid), as SimulationOptions takes them.
   struct Choices {
-    IntegratorMethod method = IntegratorMethod::FixedVerlet;
+    std::optional<IntegratorMethod> method;  // none: the fidelity's own
     std::optional<ContactMethod> contacts;  // none: the drive's
     std::optional<JointModel> joints;       // none: the drive's
     Fidelity fidelity = Fidelity::Link;

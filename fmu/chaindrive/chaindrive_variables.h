@@ -99,7 +99,7 @@ constexpr Variable kVariables[] = {
   {"solver.time",                kSolverTime,               Type::Real,    Causality::Output,    ""},
   {"driveFile",                  kDriveFile,                Type::String,  Causality::Parameter, ""},
   {"link.index",                 kLinkIndex,                Type::Integer, Causality::Parameter, "-1"},
-  {"solver.method",              kSolverMethod,             Type::String,  Causality::Parameter, "fixed-verlet"},
+  {"solver.method",              kSolverMethod,             Type::String,  Causality::Parameter, ""},
   {"solver.tolerance",           kSolverTolerance,          Type::Real,    Causality::Parameter, "1e-5"},
   {"solver.step",                kSolverStep,               Type::Real,    Causality::Parameter, "0"},
   {"solver.preload",             kSolverPreload,            Type::Boolean, Causality::Parameter, "true"},

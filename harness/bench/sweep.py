@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from .. import paths, runs
+from .. import job, paths, runs
 from ..sweep.cases import Case, run_case
 from ..sweep.execute import dask_client, run_cases
 
@@ -40,7 +40,7 @@ def timed(f):
 
 
 def run(args):
-    base = Case(rpm=0.0, fidelity=args.fidelity, cycles=args.cycles)
+    base = Case(rpm=0.0, fidelity=args.fidelity, method=job.run_config(fidelity=args.fidelity).method, cycles=args.cycles)
     cases = [dataclasses.replace(base, rpm=float(r)) for r in np.linspace(1000.0, 6000.0, args.cases)]
     loop, t_loop = timed(lambda: [run_case(c) for c in cases])
     starts, walls = {}, {}

@@ -34,6 +34,15 @@ def oil_temperature_range(drive):
     return (oil.get("temperatureMin", OIL_TEMPERATURE_RANGE[0]), oil.get("temperatureMax", OIL_TEMPERATURE_RANGE[1]))
 
 
+def clearance_or_rigid(drive):
+    """Whether the drive's joints have clearance (chain.joint.clearance > 0) or its contacts are rigid
+    (contact.method other than compliant): its solver defaults are then the table's row for such
+    drives (harness/defaults.py)."""
+    clearance = drive.get("chain", {}).get("joint", {}).get("clearance", 0.0)
+    rigid = drive.get("contact", {}).get("method", "compliant") != "compliant"
+    return (isinstance(clearance, (int, float)) and clearance > 0.0) or rigid
+
+
 def meshing_order(drive):
     """The crankshaft meshing order: the number of teeth of the prescribed (crankshaft) sprocket,
     in engine orders per crankshaft revolution."""

@@ -42,7 +42,7 @@ class Case:
     of the ramp is one point over speed."""
     rpm: float
     fidelity: str = "link"
-    method: str = "fixed-verlet"
+    method: str = "fixed-verlet"  # (the sweep and its benchmark pass the fidelity's default, harness/defaults.py)
     solver_step: float | None = None  # [s]; None: the fidelity's default (harness/job.py)
     cycles: int = 8
     drive: str | None = None

@@ -20,7 +20,7 @@ method failure, a bad parameter, a worker lost on every retry) is reported with 
 sweep goes on.
 
     python -m harness sweep [--rpm 1000:6000:500] [--runup 1000:6000 --ramp-time 5] [--fidelity link|span]
-                            [--method fixed-verlet] [--solver-step S] [--cycles 8] [--drive FILE]
+                            [--method M] [--solver-step S] [--cycles 8] [--drive FILE]
                             [--tables DIR] [--supply-pressure-bar 1,3,5] [--oil-temperature-c 40,90,120]
                             [--workers N | --scheduler ADDRESS] [--cache DIR] [--out DIR]
 
@@ -85,7 +85,7 @@ def add_arguments(ap):
                     "nearest table's torques and relative speed fluctuation)")
     ap.add_argument("--ramp-time", type=float, default=5.0, help="run-up: duration of the ramp [s] (default 5)")
     ap.add_argument("--fidelity", choices=job.FIDELITIES, default="link")
-    ap.add_argument("--method", default="fixed-verlet", help="FMU parameter solver.method")
+    ap.add_argument("--method", help="FMU parameter solver.method (default: the fidelity's, harness/defaults.py)")
     ap.add_argument("--solver-step", type=float, help="FMU parameter solver.step [s] (default: the fidelity's)")
     ap.add_argument("--cycles", type=int, default=8, help="speed sweep: engine cycles counted per speed (default 8)")
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
@@ -143,7 +143,8 @@ def oil_settings(drive, pressures, temperatures):
 
 def cases_of(args):
     """(speed-sweep cases, run-up cases) of the options."""
-    base = Case(rpm=0.0, fidelity=args.fidelity, method=args.method, solver_step=args.solver_step, cycles=args.cycles,
+    method = args.method or job.run_config(fidelity=args.fidelity, drive=args.drive).method
+    base = Case(rpm=0.0, fidelity=args.fidelity, method=method, solver_step=args.solver_step, cycles=args.cycles,
                 drive=args.drive, tables=args.tables)
     settings = getattr(args, "oil_settings", [(None, None)])
     sweep = [dataclasses.replace(base, rpm=r, supply_pressure=p, oil_temperature=T)
@@ -189,7 +190,7 @@ def run_study(name, cases, args, version, out):
     write_netcdf(ds, nc)
     written = [nc]
     if failed < len(cases):
-        written += plots(ds, study_out, meshing_order(drive), f"{args.fidelity} fidelity, {args.method}")
+        written += plots(ds, study_out, meshing_order(drive), f"{args.fidelity} fidelity, {cases[0].method}")
     print("  written: " + ", ".join(str(p) for p in written))
     return failed
 

@@ -310,6 +310,7 @@ void buildTensioner(const DriveDescription& desc, Model& m, std::vector<std::str
   t.dampingExtend = desc.tensioner.dampingExtension;
   t.kind = desc.tensioner.kind;
   t.hydraulic = desc.tensioner.hydraulic;
+  if (t.hydraulicChamber()) t.chamberOil = ChamberOilLaw(t.hydraulic.oil);
   t.nominalStroke = dot(t.pad - t.housing, t.direction);
   if (t.kind == TensionerKind::Hydraulic && t.rotor >= 0) {
     // the plunger rides on the guide's pad (its spring and oil push it there): its mass moves
@@ -527,7 +528,7 @@ void setRotorOutputSigns(Model& m) {
 }  // namespace
 
 // The state vector (model.h): the 6 link components over all links, each rotor's angle (and rate
-// unless prescribed), then the two energy accumulators and a hydraulic tensioner's chamber pressure.
+// unless prescribed), then the two energy accumulators and a hydraulic tensioner's chamber oil content.
 void layOutState(Model& m) {
   int idx = 6 * m.chain.links;
   for (auto& r : m.rotors) {
@@ -536,7 +537,7 @@ void layOutState(Model& m) {
   }
   m.stateInputWork = idx++;
   m.stateDissipated = idx++;
-  m.stateChamberPressure = m.tensioner.hydraulicChamber() ? idx++ : -1;
+  m.stateChamberOil = m.tensioner.hydraulicChamber() ? idx++ : -1;
   m.nStates = idx;
   m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "assembly/chain_path.h"
+#include "assembly/chamber_oil.h"
 #include "description/drive_description.h"
 #include "assembly/geometry.h"
 #include "math/vec2.h"
@@ -105,6 +106,7 @@ struct TensionerModel {
   double nominalStroke = 0.0;    // dot(pad - housing, direction) at the drawn pose
   TensionerKind kind = TensionerKind::SpringDamper;  // spring-damper: the damping rates; hydraulic: the device
   HydraulicTensionerDesc hydraulic;                  // (the preload and stiffness are its plunger spring)
+  ChamberOilLaw chamberOil;                          // (hydraulic) the chamber's pressure over its content
   bool hydraulicChamber() const { return present && kind == TensionerKind::Hydraulic; }
 };
 
@@ -162,14 +164,14 @@ struct Model {
   // (x of every link, then y, gamma, vx, vy, omega), so that the per-link loops of the solver run
   // over contiguous memory, several links per vector instruction; then per rotor its angle [,
   // rate]; then the two energy accumulators (input work, dissipated energy); then, with a
-  // hydraulic tensioner, its chamber's gauge pressure. The generalized
+  // hydraulic tensioner, its chamber's oil content [m3] (assembly/chamber_oil.h). The generalized
   // coordinates (and forces) are laid out alike: x, y, gamma of every link, then one per rotor,
   // so the link positions of a state are its first 3 links entries in generalized order.
   enum LinkComponent { kX = 0, kY = 1, kGamma = 2, kVx = 3, kVy = 4, kOmega = 5 };
   int nStates = 0;
   int nGen = 0;                // generalized force entries: 3 per link + 1 per rotor
   int stateInputWork = -1, stateDissipated = -1;
-  int stateChamberPressure = -1;  // -1: no hydraulic tensioner
+  int stateChamberOil = -1;  // -1: no hydraulic tensioner
   int linkState(int link, int component) const { return component * chain.links + link; }
   int linkGen(int link, int component) const { return component * chain.links + link; }
   int rotorGen(int rotor) const { return 3 * chain.links + rotor; }

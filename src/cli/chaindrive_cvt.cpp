@@ -44,7 +44,7 @@ void usage() {
                "                       disc (default 8)\n"
                "  --step S             fixed step [s] (default %g); arkode-erk: its largest step\n"
                "  --rtol R             relative tolerance of arkode-erk (default %g)\n"
-               "  --state-in FILE      start from this saved state (chaindrive.state/2; default: the nominal\n"
+               "  --state-in FILE      start from this saved state (chaindrive.state/3; default: the nominal\n"
                "                       state at t = 0); the run lasts the duration from its time\n"
                "  --state-out FILE     save the last state (for another method to continue from)\n"
                "  --csv FILE           the outputs at every output step (default step 5e-5 s)\n"

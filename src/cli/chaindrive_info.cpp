@@ -180,12 +180,17 @@ void printCalibration(const Model& m) {
   std::printf("calibration: this call took %.2f s CPU (%s)\n", cpu, fromCache ? "read from the cache" : "identified");
 }
 
-// The defaults table as {scene: {fidelity: {method, step_s, tolerance}}}.
+// The defaults table as {scene: {fidelity: {method, step_s, tolerance}}}, a row for runs with
+// joints with clearance or rigid contacts under its fidelity's as "clearanceOrRigid".
 void printDefaults() {
   nlohmann::json table = nlohmann::json::object();
-  for (const SolverDefaults& row : kSolverDefaults)
-    table[choiceName(row.scene)][choiceName(row.fidelity)] = {
-        {"method", choiceName(row.method)}, {"step_s", row.step}, {"tolerance", row.tolerance}};
+  for (const bool clearanceOrRigid : {false, true})
+    for (const SolverDefaults& row : kSolverDefaults) {
+      if (row.clearanceOrRigid != clearanceOrRigid) continue;
+      nlohmann::json& at = table[choiceName(row.scene)][choiceName(row.fidelity)];
+      (clearanceOrRigid ? at["clearanceOrRigid"] : at) = {
+          {"method", choiceName(row.method)}, {"step_s", row.step}, {"tolerance", row.tolerance}};
+    }
   std::printf("%s\n", table.dump(1).c_str());
 }
 

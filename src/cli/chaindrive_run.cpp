@@ -42,6 +42,7 @@ void usage() {
   const std::string names = listOfNames(choiceNames<IntegratorMethod>());
   const SolverDefaults& link = solverDefaults(Scene::TimingDrive, Fidelity::Link);
   const SolverDefaults& span = solverDefaults(Scene::TimingDrive, Fidelity::Span);
+  const SolverDefaults& clearance = solverDefaults(Scene::TimingDrive, Fidelity::Link, true);
   std::printf(
       "usage: chaindrive-run [options]\n"
       "  --drive FILE            drive description (default: the embedded default drive)\n"
@@ -81,8 +82,10 @@ void usage() {
       "  --save-state FILE       save the final state (for --initial-state)\n"
       "  --summary FILE.json     write the run's figures (CPU time, counters, failure and its kind)\n"
       "  --quiet                 print the summary only\n"
-      "The defaults of method, step and tolerance are the FMU's (chaindrive-info --defaults).\n",
-      names.c_str(), choiceName(link.method), link.tolerance, link.step, span.step);
+      "The defaults of method, step and tolerance are the FMU's (chaindrive-info --defaults; a drive\n"
+      "whose joints have clearance, or rigid contacts: %s at %g s).\n",
+      names.c_str(), choiceName(link.method), link.tolerance, link.step, span.step, choiceName(clearance.method),
+      clearance.step);
 }
 
 // ---- the command line ----
@@ -164,6 +167,15 @@ const Option kOptions[] = {
 };
 // clang-format on
 
+// The fidelity's solver defaults (run/defaults.h: the row of runs with joints with clearance or
+// rigid contacts, or not) where the command line gave no method, step or tolerance.
+void applyDefaults(RunArguments& r, const SolverDefaults& own) {
+  applySolverDefaults(own, r.opt.integrator);
+  r.opt.integrator.method = r.method.value_or(r.opt.integrator.method);
+  r.opt.integrator.fixed.step = r.step.value_or(defaultStep(own, r.opt.integrator.method));
+  r.opt.integrator.adaptive.rtol = r.rtol.value_or(r.opt.integrator.adaptive.rtol);
+}
+
 // The options in any order, -h/--help ends the reading; then the ranges of the numbers. A bad
 // argument throws (std::invalid_argument, or std::stod's exceptions).
 RunArguments parseArguments(Arguments& args) {
@@ -175,10 +187,7 @@ RunArguments parseArguments(Arguments& args) {
     option->apply(args, r);
   }
   if (args.help()) return r;
-  applySolverDefaults(solverDefaults(Scene::TimingDrive, r.opt.fidelity), r.opt.integrator);
-  r.opt.integrator.method = r.method.value_or(r.opt.integrator.method);
-  r.opt.integrator.fixed.step = r.step.value_or(r.opt.integrator.fixed.step);
-  r.opt.integrator.adaptive.rtol = r.rtol.value_or(r.opt.integrator.adaptive.rtol);
+  applyDefaults(r, solverDefaults(Scene::TimingDrive, r.opt.fidelity));
   if (!(r.rpm > 0.0 && r.rpm <= 20000.0)) throw std::invalid_argument("--rpm must be in (0, 20000]");
   if (!(r.outputStep > 0.0)) throw std::invalid_argument("--output-step must be positive");
   if (!(r.opt.integrator.adaptive.rtol > 0.0 && r.opt.integrator.adaptive.rtol < 1.0)) throw std::invalid_argument("--rtol must be in (0, 1)");
@@ -369,11 +378,12 @@ void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult&
 }
 
 // The whole run; returns the exit code (0, or 3 when the integration failed).
-int run(const RunArguments& r) {
+int run(RunArguments r) {
   // the drive, its inputs and the time to simulate
   const DriveDescription desc = cli::loadDrive(r.drive);
   auto model = std::make_shared<const Model>(assemble(desc));
   const Model& m = *model;
+  applyDefaults(r, ownSolverDefaults(m, r.opt));
   const double w0 = r.rpm * 2.0 * kPi / 60.0;
   const double tEnd = r.duration > 0.0 ? r.duration : r.cycles * 2.0 * 2.0 * kPi / w0;
   Simulation sim(model, r.opt, makeInputs(m, r, w0));

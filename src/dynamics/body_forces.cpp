@@ -17,13 +17,9 @@ double springEnergy(const TensionerModel& t, double spring, double stroke) {
 
 // The hydraulic tensioner's chamber on the plunger beside its spring: its force, flows and powers
 // into r (dynamics/hydraulic_tensioner.h).
-double addChamber(const TensionerModel& t, double stroke, double sDot, const ChamberState& chamber,
-                  TensionerResult& r) {
+double addChamber(const TensionerModel& t, double stroke, const ChamberState& chamber, TensionerResult& r) {
   const HydraulicResult h =
-      chamber.pressureIsState
-          ? hydraulicTensioner(t.hydraulic, stroke, sDot, chamber.pressure, chamber.supplyPressure, chamber.viscosity)
-          : hydraulicChamber(t.hydraulic, stroke, chamber.pressure, chamber.supplyPressure, chamber.viscosity);
-  r.pressureRate = h.pressureRate;
+      hydraulicChamber(t.hydraulic, stroke, chamber.pressure, chamber.supplyPressure, chamber.viscosity);
   r.chamberPressure = h.pressure;
   r.flows = h.flows;
   r.supplyPower = h.supplyPower;
@@ -68,6 +64,20 @@ double tensionerStroke(const TensionerModel& t, Vec2 pivot, double cosA, double 
   return padExtension(t, pivot, rotate(t.pad - pivot, cosA, sinA)) - t.nominalStroke;
 }
 
+void fillChamber(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double content,
+                 ChamberState& chamber) {
+  chamber.ratio = chamberVolume(t.hydraulic, tensionerStroke(t, pivot, cosA, sinA)) / content;
+  if (!chamber.held) chamber.pressure = t.chamberOil.pressureAt(chamber.ratio);
+}
+
+double chamberOilAt(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double pressure) {
+  return chamberVolume(t.hydraulic, tensionerStroke(t, pivot, cosA, sinA)) / t.chamberOil.volumeRatio(pressure);
+}
+
+double chamberOilRate(const TensionerModel& t, const ChamberState& chamber, const HydraulicFlows& flows) {
+  return t.chamberOil.contentRate(flows.check - flows.leak - flows.relief, chamber.ratio);
+}
+
 TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double rate,
                                const ChamberState& chamber) {
   TensionerResult r;
@@ -81,7 +91,7 @@ TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA,
   double f;
   if (t.kind == TensionerKind::Hydraulic) {
     // the plunger does not pull the guide: the chamber's force (>= 0) and the spring's push it
-    f = std::max(0.0, spring + addChamber(t, r.stroke, sDot, chamber, r));
+    f = std::max(0.0, spring + addChamber(t, r.stroke, chamber, r));
   } else {
     const double c = sDot < 0.0 ? t.dampingRetract : t.dampingExtend;
     f = std::max(0.0, spring - c * sDot);
@@ -105,9 +115,9 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
     d.tensionerForce = t.force;
     d.tensionerStroke = t.stroke;
     d.tensionerRate = t.rate;
-    d.chamberPressureRate = t.pressureRate;
     d.chamberPressure = t.chamberPressure;
     d.tensionerFlows = t.flows;
+    if (m.stateChamberOil >= 0) d.chamberOilRate = chamberOilRate(m.tensioner, d.chamber, t.flows);
   }
 }
 

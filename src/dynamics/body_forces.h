@@ -16,7 +16,6 @@ struct TensionerResult {
   double power = 0.0;   // dissipated [W]
   double energy = 0.0;  // spring energy [J] (the compressed oil's: tensionerEnergy)
   double supplyPower = 0.0;    // [W] the oil supply's (hydraulic)
-  double pressureRate = 0.0;   // [Pa/s] of the chamber's state (hydraulic)
   double chamberPressure = 0.0;  // [Pa] gauge, the chamber's (hydraulic; cavitating: the vapour's)
   HydraulicFlows flows;        // [m3/s] (hydraulic)
 };
@@ -24,6 +23,15 @@ TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA,
                                const ChamberState& chamber);
 /// The plunger's extension [m] relative to the nominal (drawn) pose, at the guide's angle (cos, sin).
 double tensionerStroke(const TensionerModel& t, Vec2 pivot, double cosA, double sinA);
+
+/// A hydraulic chamber at its oil content [m3] with the guide at angle (cos, sin): sets
+/// chamber.ratio, and chamber.pressure from the content's law unless the chamber is held.
+void fillChamber(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double content,
+                 ChamberState& chamber);
+/// The oil content [m3] that fills the chamber at gauge pressure [Pa] with the guide at angle (cos, sin).
+double chamberOilAt(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double pressure);
+/// The content's rate [m3/s]: the valves' and the leak's flows at the filled chamber.
+double chamberOilRate(const TensionerModel& t, const ChamberState& chamber, const HydraulicFlows& flows);
 
 /// The tensioner's stored energy [J]: its spring's and a hydraulic chamber's compressed oil,
 /// p^2 V / (2 K) (what the energy balance of a run counts; not evaluated with every force).

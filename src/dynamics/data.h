@@ -13,14 +13,17 @@ namespace chaindrive {
 
 /// Input values at one instant. Signs are those users see: the crankshaft speed is positive in
 /// the running direction, a load torque is positive when it opposes the running direction.
-/// What a hydraulic tensioner's chamber needs beyond the plunger's motion: its state (the gauge
-/// pressure), the supply's gauge pressure (an input) and the oil's viscosity at its temperature
-/// (constant over a run: the work area computes it once). Unused by the spring-damper law.
+/// What a hydraulic tensioner's chamber needs beyond the plunger's motion: its gauge pressure
+/// and volume ratio (of its oil content, the state, at the plunger's stroke: fillChamber in
+/// dynamics/body_forces.h), the supply's gauge pressure (an input) and the oil's viscosity at its
+/// temperature (constant over a run: the work area computes it once). Unused by the spring-damper
+/// law. Held (statics): the pressure stays as set, whatever the content.
 struct ChamberState {
   double pressure = 0.0;        // [Pa]
+  double ratio = 1.0;           // the chamber's volume over its oil content (assembly/chamber_oil.h)
   double supplyPressure = 0.0;  // [Pa]
   double viscosity = 0.0;       // [Pa s]
-  bool pressureIsState = true;  // false: the caller integrates another state (no pressure rate)
+  bool held = false;
 };
 
 struct InputValues {
@@ -222,8 +225,8 @@ struct Data {
   // tensioner; a hydraulic one's chamber: its state and viscosity in, its rate and flows out
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   ChamberState chamber;
-  double chamberPressureRate = 0.0;   // [Pa/s] of the chamber's state
-  double chamberPressure = 0.0;       // [Pa] gauge, the chamber's (the state, at least the vapour's)
+  double chamberOilRate = 0.0;        // [m3/s] of the chamber's state, its oil content
+  double chamberPressure = 0.0;       // [Pa] gauge, the chamber's (at least the vapour's)
   HydraulicFlows tensionerFlows;      // [m3/s]
   // power terms
   double powerInput = 0.0, powerDissipated = 0.0;

@@ -119,7 +119,10 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   } else {
     d.nContacts = 0;
   }
-  d.chamber.pressure = m.stateChamberPressure >= 0 ? y[m.stateChamberPressure] : 0.0;
+  if (m.stateChamberOil >= 0) {
+    const int r = m.tensioner.rotor;
+    fillChamber(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], y[m.stateChamberOil], d.chamber);
+  }
   evaluateBodyForces(m, d, pIn, pDiss);
   d.powerInput = pIn;
   d.powerDissipated = pDiss;
@@ -148,7 +151,7 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
   // the energy accumulators integrate the powers of this evaluation
   ydot[m.stateInputWork] = d.powerInput;
   ydot[m.stateDissipated] = d.powerDissipated;
-  if (m.stateChamberPressure >= 0) ydot[m.stateChamberPressure] = d.chamberPressureRate;
+  if (m.stateChamberOil >= 0) ydot[m.stateChamberOil] = d.chamberOilRate;
 }
 
 EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {

@@ -36,6 +36,13 @@ inline bool finiteState(const double* x, int n, Failure& why) {
   return true;
 }
 
+/// False once a hydraulic chamber's oil content [m3] is no longer positive (it emptied).
+inline bool chamberFilled(double content, double t, Failure& why) {
+  if (content > 0.0) return true;
+  why = {FailureKind::BlowUp, "blow-up at t = " + std::to_string(t) + " s: the tensioner's chamber emptied"};
+  return false;
+}
+
 /// The joint and contact checks; opening(j) is the distance [m] by which joint j is opened.
 template <class Opening>
 bool chainHealthy(const Model& m, const HealthLimits& limits, Opening opening, const ContactPoint* contacts,

@@ -42,15 +42,7 @@ double oilViscosity(const OilDesc& oil, double temperature) {
   return oil.vogelA * math::exp(oil.vogelB / (temperature - oil.vogelC));
 }
 
-// The isothermal-polytropic mixture of Simscape's hydraulic fluid: per unit volume of oil, free
-// air of volume a(p) = alpha (p_atm / p_abs)^(1/n), compressed polytropically (its modulus n p_abs)
-// in parallel with the oil (modulus K): K_eff = (1 + a) / (1 / K + a / (n p_abs)). The oil's own
-// volume change is left out of the mixture's volume (it is below 1 % up to 100 bar).
-FreeAir freeAir(const OilDesc& oil, double pressure) {
-  const double pAbs = std::max(pressure + oil.atmosphericPressure, oil.vapourPressure);
-  return {pAbs, oil.airFraction * math::pow(oil.atmosphericPressure / pAbs, 1.0 / oil.polytropicExponent)};
-}
-
+// The mixture of the oil and its free air (assembly/chamber_oil.h): K_eff = (1 + a) / (1 / K + a / (n p_abs)).
 double effectiveBulkModulus(const OilDesc& oil, double pressure) {
   if (oil.airFraction <= 0.0) return oil.bulkModulus;
   const FreeAir a = freeAir(oil, pressure);

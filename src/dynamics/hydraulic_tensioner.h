@@ -19,6 +19,7 @@
 // (math/elementary.h), so that the platforms give the same bits.
 #pragma once
 
+#include "assembly/chamber_oil.h"
 #include "description/hydraulic_tensioner.h"
 
 namespace chaindrive {
@@ -51,13 +52,6 @@ double plungerArea(const HydraulicTensionerDesc& t);
 double chamberVolume(const HydraulicTensionerDesc& t, double stroke);
 /// Vogel's law: the oil's dynamic viscosity [Pa s] at temperature [K] (within the law's range).
 double oilViscosity(const OilDesc& oil, double temperature);
-/// The oil's entrained air at gauge pressure p: the absolute pressure [Pa] (at least the vapour
-/// pressure) and the free air per unit volume of oil there, a = alpha (p_atm / p_abs)^(1/n).
-struct FreeAir {
-  double absolutePressure;
-  double perOil;
-};
-FreeAir freeAir(const OilDesc& oil, double pressure);
 /// The effective bulk modulus [Pa] of the oil with its entrained air at gauge pressure p.
 double effectiveBulkModulus(const OilDesc& oil, double pressure);
 /// The leak gap's conductance [m3/(s Pa)]: Q_leak = leakConductance * p.
@@ -74,7 +68,7 @@ HydraulicResult hydraulicTensioner(const HydraulicTensionerDesc& t, double strok
                                    double supplyPressure, double viscosity);
 /// hydraulicTensioner without the state's rate (pressureRate, vapourVolume and flows.vapour 0):
 /// the force, the valves' and the leak's flows and the powers at the chamber's pressure, for a
-/// caller whose state is not the pressure (the span model's oil content, span/chamber_oil.h).
+/// caller whose state is not the pressure (the drive models keep the oil content: assembly/chamber_oil.h).
 HydraulicResult hydraulicChamber(const HydraulicTensionerDesc& t, double stroke, double pressure,
                                  double supplyPressure, double viscosity);
 

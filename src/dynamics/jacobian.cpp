@@ -20,7 +20,7 @@ constexpr double kDxPosition = 1e-9;   // m
 constexpr double kDxAngle = 1e-8;      // rad
 constexpr double kDxVelocity = 1e-6;   // m/s
 constexpr double kDxRate = 1e-5;       // rad/s
-constexpr double kDxPressure = 1.0;    // Pa (of some 1e5 Pa in the chamber)
+constexpr double kDxOil = 1e-9;       // of the chamber's volume (about 1 Pa at the oil's modulus)
 
 double perturbation(const Model& m, int state) {
   if (state < 6 * m.chain.links) {
@@ -31,14 +31,16 @@ double perturbation(const Model& m, int state) {
     if (state == r.stateAngle) return kDxAngle;
     if (state == r.stateRate) return kDxRate;
   }
-  if (state == m.stateChamberPressure) return kDxPressure;
+  if (state == m.stateChamberOil) return kDxOil * m.tensioner.hydraulic.chamberVolume;
   return 1e-6;
 }
 
-// A hydraulic tensioner's chamber at state y (its pressure; the supply and viscosity of d).
-ChamberState chamberAt(const Model& m, const Data& d, const double* y) {
+// A hydraulic tensioner's chamber at state y with its guide at angle (cos, sin): filled from its
+// content (held as d's in statics); the supply and viscosity of d.
+ChamberState chamberAt(const Model& m, const Data& d, const double* y, double cosA, double sinA) {
   ChamberState c = d.chamber;
-  c.pressure = m.stateChamberPressure >= 0 ? y[m.stateChamberPressure] : 0.0;
+  if (m.stateChamberOil >= 0)
+    fillChamber(m.tensioner, m.rotors[m.tensioner.rotor].axis, cosA, sinA, y[m.stateChamberOil], c);
   c.supplyPressure = d.inputs.supplyPressure;
   return c;
 }
@@ -81,13 +83,12 @@ JacobianAssembler::JacobianAssembler(const Model& m) {
     for (int c = 0; c < 6 * n; ++c) add(r.stateRate, c);
     for (int s : rotorStates) add(r.stateRate, s);
   }
-  // a hydraulic tensioner's chamber and its guide: the guide's torque over the pressure, the
-  // pressure's rate over the guide's angle and rate (and the pressure: the diagonal)
-  if (m.stateChamberPressure >= 0) {
+  // a hydraulic tensioner's chamber and its guide: the guide's torque over the oil content, the
+  // content's rate over the guide's angle (and the content: the diagonal)
+  if (m.stateChamberOil >= 0) {
     const RotorModel& guide = m.rotors[m.tensioner.rotor];
-    add(guide.stateRate, m.stateChamberPressure);
-    add(m.stateChamberPressure, guide.stateAngle);
-    add(m.stateChamberPressure, guide.stateRate);
+    add(guide.stateRate, m.stateChamberOil);
+    add(m.stateChamberOil, guide.stateAngle);
   }
   colPtr_.assign(ns + 1, 0);
   for (int c = 0; c < ns; ++c) {
@@ -215,12 +216,12 @@ void JacobianAssembler::differentiateRotorElements(const Model& m, const Data& d
       double tq = -g.pivotDamping * rate;
       if (g.mass > 0.0) tq += cross(rotate(g.centerOfMass - g.pivot, cs, sn), g.mass * m.gravity);
       if (m.tensioner.present && m.tensioner.rotor == g.rotor)
-        tq += tensionerForce(m.tensioner, ro.axis, cs, sn, rate, chamberAt(m, d, y)).torque;
+        tq += tensionerForce(m.tensioner, ro.axis, cs, sn, rate, chamberAt(m, d, y, cs, sn)).torque;
       return tq;
     };
     const double base = eval();
-    const bool chamber = m.stateChamberPressure >= 0 && m.tensioner.rotor == g.rotor;
-    for (int col : {ro.stateAngle, ro.stateRate, chamber ? m.stateChamberPressure : -1}) {
+    const bool chamber = m.stateChamberOil >= 0 && m.tensioner.rotor == g.rotor;
+    for (int col : {ro.stateAngle, ro.stateRate, chamber ? m.stateChamberOil : -1}) {
       if (col < 0) continue;
       const double h = perturbation(m, col), keep = y[col];
       y[col] = keep + h;
@@ -231,25 +232,26 @@ void JacobianAssembler::differentiateRotorElements(const Model& m, const Data& d
   }
 }
 
-// A hydraulic tensioner's chamber: its pressure rate over the guide's angle and rate and the
-// pressure, into the chamber's row of values.
+// A hydraulic tensioner's chamber: its content's rate over the guide's angle and the content,
+// into the chamber's row of values.
 void JacobianAssembler::differentiateChamber(const Model& m, const Data& d, double* values) {
-  if (m.stateChamberPressure < 0) return;
+  if (m.stateChamberOil < 0) return;
   double* y = yWork_.data();
   const int r = m.tensioner.rotor;
   const RotorModel& ro = m.rotors[r];
   auto rate = [&]() {
     double angle, cs, sn, w;
     rotorState(m, d, y, r, angle, cs, sn, w);
-    return tensionerForce(m.tensioner, ro.axis, cs, sn, w, chamberAt(m, d, y)).pressureRate;
+    const ChamberState c = chamberAt(m, d, y, cs, sn);
+    return chamberOilRate(m.tensioner, c, tensionerForce(m.tensioner, ro.axis, cs, sn, w, c).flows);
   };
   const double base = rate();
-  for (int col : {ro.stateAngle, ro.stateRate, m.stateChamberPressure}) {
+  for (int col : {ro.stateAngle, m.stateChamberOil}) {
     const double h = perturbation(m, col), keep = y[col];
     y[col] = keep + h;
-    const double dp = (rate() - base) / h;
+    const double dc = (rate() - base) / h;
     y[col] = keep;
-    values[find(m.stateChamberPressure, col)] += dp;
+    values[find(m.stateChamberOil, col)] += dc;
   }
 }
 

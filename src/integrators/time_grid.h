@@ -6,7 +6,7 @@
 // t += H, (k+1)H - kH and integer nanoseconds all give the same k, and so the same bits.
 //
 // The snapping rule: a requested time within kSnapFraction of a grid unit from a grid point IS
-// that grid point (25 ns at the default 2.5 us step, 10 ns on the 1 us quantum). This absorbs the
+// that grid point (25 ns at a 2.5 us step, 10 ns on the 1 us quantum). This absorbs the
 // rounding of every known way of forming times: k*H is exact to an ulp (1.4e-14 s at t = 100 s),
 // t += H accumulates 2.2e-9 s over 1e6 steps of 100 us, a step of 1/60 s passed as
 // 0.016666666666666677 is 1e-17 s off. A requested time farther from the grid is integrated to the

@@ -84,18 +84,18 @@ void RigidContactDrive::pack(const double* q, const double* v, double* y) const 
 }
 
 void RigidContactDrive::setSmoothStates(const double* y) {
-  const int p = model_->stateChamberPressure;
-  if (p >= 0) y_[p] = y[p];  // (pack leaves it: evaluate() reads it from y_)
+  const int c = model_->stateChamberOil;
+  if (c >= 0) y_[c] = y[c];  // (pack leaves it: evaluate() reads it from y_)
 }
 
 void RigidContactDrive::smoothStates(double* y) const {
-  const int p = model_->stateChamberPressure;
-  if (p >= 0) y[p] = y_[p];
+  const int c = model_->stateChamberOil;
+  if (c >= 0) y[c] = y_[c];
 }
 
 void RigidContactDrive::advanceSmoothStates(double h) {
-  const int p = model_->stateChamberPressure;
-  if (p >= 0) y_[p] += h * d_.chamberPressureRate;
+  const int c = model_->stateChamberOil;
+  if (c >= 0) y_[c] += h * d_.chamberOilRate;
 }
 
 void RigidContactDrive::prescribed(double t, double* v, double* a) const {
@@ -273,6 +273,7 @@ void RigidContactDrive::contactPoints(const std::vector<ns::ContactForce>& f, st
 bool RigidContactDrive::healthy(double t, const double* q, const double* v, Failure& why) {
   if (!finiteState(q, n_, why) || !finiteState(v, n_, why)) return false;
   const Model& m = *model_;
+  if (m.stateChamberOil >= 0 && !chamberFilled(y_[m.stateChamberOil], t, why)) return false;
   pack(q, v, y_.data());
   evaluateKinematics(m, d_, y_.data());
   // the contacts of the last constraint evaluation (within the step)

@@ -43,7 +43,7 @@ class RigidContactDrive : public ns::NonsmoothSystem {
   /// State vector (compliant layout, y) <-> (q, v).
   void unpack(const double* y, double* q, double* v) const;
   void pack(const double* q, const double* v, double* y) const;
-  /// The smooth states beside q and v (a hydraulic tensioner's chamber pressure) from y, into y.
+  /// The smooth states beside q and v (a hydraulic tensioner's chamber oil content) from y, into y.
   void setSmoothStates(const double* y);
   void smoothStates(double* y) const;
   /// The contact points of the last constraints() call with the given forces (outputs).

@@ -21,6 +21,8 @@ struct ChoiceNames<Scene> {
 struct SolverDefaults {
   Scene scene;
   Fidelity fidelity;
+  bool clearanceOrRigid;  // the row of runs the real-time method does not serve: joints with clearance
+                          // (their damping not constant) or rigid contacts (time stepping's step)
   IntegratorMethod method;
   double step;       // [s] the fixed step (adaptive methods: none unless given)
   double tolerance;  // the adaptive methods' relative tolerance
@@ -29,17 +31,36 @@ struct SolverDefaults {
 // clang-format off
 // (why each row is what it is, with the measurements behind it: docs/defaults.md)
 inline constexpr SolverDefaults kSolverDefaults[] = {
-  {Scene::TimingDrive, Fidelity::Link, IntegratorMethod::FixedVerlet, 2.5e-6, 1e-5},
-  {Scene::TimingDrive, Fidelity::Span, IntegratorMethod::FixedVerlet, 1e-4 / 3, 1e-5},
-  {Scene::Cvt, Fidelity::Link, IntegratorMethod::FixedVerlet, 5e-7, 1e-5},
+  {Scene::TimingDrive, Fidelity::Link, false, IntegratorMethod::FixedVerletImplicitJointDamping, 1e-4 / 28, 1e-5},
+  {Scene::TimingDrive, Fidelity::Link, true, IntegratorMethod::FixedVerlet, 2.5e-6, 1e-5},
+  {Scene::TimingDrive, Fidelity::Span, false, IntegratorMethod::FixedVerlet, 1e-4 / 3, 1e-5},
+  {Scene::Cvt, Fidelity::Link, false, IntegratorMethod::FixedVerlet, 5e-7, 1e-5},
 };
 // clang-format on
 
-/// The row of a scene and fidelity (every pair that runs has one).
-constexpr const SolverDefaults& solverDefaults(Scene scene, Fidelity fidelity = Fidelity::Link) {
+/// The row of a scene and fidelity (every pair that runs has one) for a run with joints with
+/// clearance or rigid contacts, or not: the link fidelity's real-time method makes the joints'
+/// damping implicit, which needs it constant (no clearance), and it integrates compliant contacts;
+/// a drive with clearance runs plain Verlet at its checked step, time stepping that step. Where no
+/// row names them the fidelity's one row holds for both.
+constexpr const SolverDefaults& solverDefaults(Scene scene, Fidelity fidelity = Fidelity::Link,
+                                               bool clearanceOrRigid = false) {
+  const SolverDefaults* found = nullptr;
   for (const SolverDefaults& row : kSolverDefaults)
-    if (row.scene == scene && row.fidelity == fidelity) return row;
-  return kSolverDefaults[0];  // (unreachable for the pairs above; a constexpr function must return)
+    if (row.scene == scene && row.fidelity == fidelity && (!found || row.clearanceOrRigid == clearanceOrRigid))
+      found = &row;
+  return found ? *found : kSolverDefaults[0];  // (kSolverDefaults[0]: unreachable for the pairs above)
+}
+
+/// The fixed step [s] of `method` where none is given: the own row's for its method, else the step
+/// of the scene and fidelity's row of that method, else that of its row for joints with clearance or
+/// rigid contacts (plain Verlet's checked step: a method without a row of its own is not checked at
+/// the real-time method's longer step), else the own row's.
+constexpr double defaultStep(const SolverDefaults& own, IntegratorMethod method) {
+  if (method == own.method) return own.step;
+  for (const SolverDefaults& row : kSolverDefaults)
+    if (row.scene == own.scene && row.fidelity == own.fidelity && row.method == method) return row.step;
+  return solverDefaults(own.scene, own.fidelity, true).step;  // (the own row where there is no such row)
 }
 
 /// Sets the method, the fixed step and the tolerance of a row into integrator settings.

@@ -109,7 +109,7 @@ void DriveSystem::toleranceScales(double* scale) const {
   }
   scale[m.stateInputWork] = 1.0;
   scale[m.stateDissipated] = 1.0;
-  if (m.stateChamberPressure >= 0) scale[m.stateChamberPressure] = 1e5;  // Pa (some bar in the chamber)
+  if (m.stateChamberOil >= 0) scale[m.stateChamberOil] = chamberOilScale(m.tensioner.hydraulic);
 }
 
 bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
@@ -117,6 +117,7 @@ bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
   // deepest gap of the last right-hand-side evaluation (at or next to this state)
   const Model& m = *model_;
   if (!finiteState(y, m.nStates, why)) return false;
+  if (m.stateChamberOil >= 0 && !chamberFilled(y[m.stateChamberOil], t, why)) return false;
   const bool jointsOk = jointsWithin(m, data_, health_.blowUpDeformation * m.chain.pitch);
   if (jointsOk && !(data_.deepestGap < -health_.tunnellingDepth * m.chain.depthScale)) return true;
   // beyond a limit: named from the contacts listed (evaluated again where they were not: the
@@ -186,6 +187,11 @@ RunChoices runChoices(const Model& m, const SimulationOptions& opt) {
   return {opt.fidelity, opt.contactMethod.value_or(m.description.contact.method),
           opt.jointModel.value_or(m.description.chain.joint.model), opt.integrator.method,
           opt.integrator.rigid.rigidPins};
+}
+
+const SolverDefaults& ownSolverDefaults(const Model& m, const SimulationOptions& opt) {
+  const bool rigid = opt.contactMethod.value_or(m.description.contact.method) != ContactMethod::Compliant;
+  return solverDefaults(Scene::TimingDrive, opt.fidelity, m.chain.jointClearance > 0.0 || rigid);
 }
 
 std::vector<ChoiceProblem> combinationProblems(const Model& m, const RunChoices& c) {

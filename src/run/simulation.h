@@ -13,6 +13,7 @@
 #include "linear/cyclic_block_tridiagonal.h"
 #include "dynamics/jacobian.h"
 #include "assembly/model.h"
+#include "run/defaults.h"
 #include "outputs/outputs.h"
 #include "statics/preload.h"
 #include "nonsmooth/rigid_drive.h"
@@ -94,6 +95,11 @@ struct RunChoices {
   bool rigidPins;
 };
 RunChoices runChoices(const Model& m, const SimulationOptions& opt);
+
+/// The timing drive's solver defaults for a run of m with the options' fidelity (run/defaults.h):
+/// the row for joints with clearance or rigid contacts (the options' or the drive's) where they
+/// apply.
+const SolverDefaults& ownSolverDefaults(const Model& m, const SimulationOptions& opt);
 
 /// The choice a combination rule refuses (the one to change), and why: its text starts with the
 /// refused value, so that each boundary puts its own name of the choice before it.

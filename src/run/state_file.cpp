@@ -15,8 +15,11 @@ namespace {
 
 using json = nlohmann::json;
 
-// /2: the state laid out component by component (model.h); /1 held 6 components per link
-constexpr const char* kSchema = "chaindrive.state/2";
+// /3: a hydraulic chamber's state in the link model is its oil content; /2 held its pressure
+// there (the same layout otherwise); /2 laid the state out component by component (model.h); /1
+// held 6 components per link
+constexpr const char* kSchema = "chaindrive.state/3";
+constexpr const char* kPressureSchema = "chaindrive.state/2";
 
 std::string hex(double v) {
   char buf[64];
@@ -67,7 +70,12 @@ StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
     throw std::runtime_error(path + ": a state file of the earlier state layout (schema \"chaindrive.state/1\", 6 "
                              "components per link); this version reads \"" + std::string(kSchema) +
                              "\" (the link components by component): save the state again");
-  if (!j.is_object() || j.value("schema", "") != kSchema)
+  const bool pressureState = j.is_object() && j.value("schema", "") == kPressureSchema;
+  if (pressureState && fidelity == Fidelity::Link && m.stateChamberOil >= 0)
+    throw std::runtime_error(path + ": a state file of the earlier state layout (schema \"" +
+                             std::string(kPressureSchema) + "\": the hydraulic chamber's pressure as its state); "
+                             "this version reads \"" + std::string(kSchema) + "\" (its oil content): save the state again");
+  if (!pressureState && (!j.is_object() || j.value("schema", "") != kSchema))
     throw std::runtime_error(path + ": not a state file (schema must be \"" + std::string(kSchema) + "\")");
   const std::string fileFidelity = j.value("fidelity", "link");
   if (choiceOf<Fidelity>(fileFidelity) != fidelity)

@@ -15,7 +15,7 @@ struct StateSnapshot {
   std::vector<double> y;
 };
 
-/// Writes the snapshot as JSON (schema "chaindrive.state/2") with the drive's name, number of
+/// Writes the snapshot as JSON (schema "chaindrive.state/3"; "/2" is read where it is the same) with the drive's name, number of
 /// links and of states and the fidelity (written unless link), so that a
 /// mismatching drive or fidelity is recognised on reading.
 void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s,

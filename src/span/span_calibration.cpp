@@ -55,7 +55,10 @@ void spanAtPose(const SpanModel& sm, const std::vector<double>& yLink, const Inp
   for (std::size_t r = 0; r < m.rotors.size(); ++r) y[sm.stateAngle[r]] = yLink[m.rotors[r].stateAngle];
   SpanData d(sm);
   d.quasiStatic = true;
-  if (sm.stateChamberOil >= 0) d.heldChamberPressure = yLink[m.stateChamberPressure];  // the link model's, held
+  if (sm.stateChamberOil >= 0) {  // at rest, held (as the link model's statics hold it)
+    d.chamber.held = true;
+    d.chamber.pressure = chamberRestPressure(m.tensioner.hydraulic, in.supplyPressure);
+  }
   d.prescribedTension = tension;
   HeldInputs held(m);
   held.values = in;

@@ -12,7 +12,6 @@ SpanData::SpanData(const SpanModel& m) {
   const std::size_t nr = m.links->rotors.size();
   inputs.loadTorque.assign(nr, 0.0);
   chamber.viscosity = tensionerOilViscosity(m.links->tensioner);
-  chamber.pressureIsState = false;  // the state is the oil content (chamber_oil.h)
   rotorAngle.assign(nr, 0.0);
   rotorRate.assign(nr, 0.0);
   rotorCos.assign(nr, 1.0);
@@ -130,33 +129,7 @@ void spanLoads(const SpanModel& m, SpanData& d, int i) {
   }
 }
 
-double chamberVolumeAt(const SpanModel& m, double cosA, double sinA) {
-  const TensionerModel& t = m.links->tensioner;
-  return chamberVolume(t.hydraulic, tensionerStroke(t, m.links->rotors[t.rotor].axis, cosA, sinA));
-}
-
-// The chamber's pressure: its oil content's at the plunger's stroke (d.chamberRatio set), or held
-// (statics).
-double chamberPressure(const SpanModel& m, SpanData& d, const double* y) {
-  if (m.stateChamberOil < 0) return 0.0;
-  const int r = m.links->tensioner.rotor;
-  d.chamberRatio = chamberVolumeAt(m, d.rotorCos[r], d.rotorSin[r]) / y[m.stateChamberOil];
-  return d.quasiStatic ? d.heldChamberPressure : m.chamberOil.pressureAt(d.chamberRatio);
-}
-
-// The content's rate: the valves' and the leak's flows over the volume ratio (the floor's while
-// the chamber cavitates: then the flows fill or empty the vapour's volume, not the oil's).
-double chamberOilRate(const SpanModel& m, const SpanData& d) {
-  if (m.stateChamberOil < 0) return 0.0;
-  const HydraulicFlows& q = d.tensionerFlows;
-  return (q.check - q.leak - q.relief) / std::min(d.chamberRatio, m.chamberOil.floorRatio());
-}
-
 }  // namespace
-
-double chamberOilAt(const SpanModel& m, double cosA, double sinA, double pressure) {
-  return chamberVolumeAt(m, cosA, sinA) / m.chamberOil.volumeRatio(pressure);
-}
 
 void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y) {
   ++d.rhsEvaluations;
@@ -170,7 +143,10 @@ void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, 
   for (int i = 0; i < n; ++i) spanLoads(m, d, i);
   d.rotorGen = d.chainTorque;  // same size: no allocation
   TensionerResult t0;
-  d.chamber.pressure = chamberPressure(m, d, y);
+  const TensionerModel& tm = m.links->tensioner;
+  if (m.stateChamberOil >= 0)
+    fillChamber(tm, m.links->rotors[tm.rotor].axis, d.rotorCos[tm.rotor], d.rotorSin[tm.rotor], y[m.stateChamberOil],
+                d.chamber);
   evaluateRotorForces(*m.links, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.chamber,
                       d.rotorGen.data(), t0, d.powerInput, d.powerDissipated);
   d.tensionerForce = t0.force;
@@ -178,7 +154,7 @@ void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, 
   d.tensionerRate = t0.rate;
   d.chamberPressure = t0.chamberPressure;
   d.tensionerFlows = t0.flows;
-  d.chamberOilRate = chamberOilRate(m, d);
+  if (m.stateChamberOil >= 0) d.chamberOilRate = chamberOilRate(tm, d.chamber, t0.flows);
 }
 
 void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y, double* ydot) {

@@ -28,10 +28,9 @@ struct SpanState {
 
 struct SpanData {
   explicit SpanData(const SpanModel& m);
-  // statics (the preload, the identification): springs without damping, the chamber's pressure
-  // held at heldChamberPressure [Pa] (as the link model's statics hold it), not the content's
+  // statics (the preload, the identification): springs without damping (and there the chamber
+  // held: chamber.held, as the link model's statics hold it)
   bool quasiStatic = false;
-  double heldChamberPressure = 0.0;
   std::vector<double> prescribedTension;  // (spans) spring tensions instead of the laws' (identification); empty
   InputValues inputs;
   std::vector<double> rotorAngle, rotorRate, rotorCos, rotorSin;  // (rotors) math sense
@@ -40,7 +39,6 @@ struct SpanData {
   std::vector<SpanState> spans;
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   ChamberState chamber;               // a hydraulic tensioner's (as the link model's Data)
-  double chamberRatio = 1.0;          // the chamber's volume over its oil content (span/chamber_oil.h)
   double chamberOilRate = 0.0;        // [m3/s] of the content
   double chamberPressure = 0.0;       // [Pa] gauge, the chamber's
   HydraulicFlows tensionerFlows;      // [m3/s]
@@ -50,9 +48,6 @@ struct SpanData {
 
 /// Torques at (t, y) into d.chainTorque and d.rotorGen; spans, tensioner and powers into d.
 void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y);
-
-/// The chamber's oil content [m3] at the guide's angle (cos, sin) and gauge pressure [Pa].
-double chamberOilAt(const SpanModel& m, double cosA, double sinA, double pressure);
 
 /// ydot = f(t, y). Never allocates.
 void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y, double* ydot);

@@ -391,7 +391,6 @@ void layOutState(const Model& m, SpanModel& sm) {
   sm.stateInputWork = idx++;
   sm.stateDissipated = idx++;
   sm.stateChamberOil = m.tensioner.hydraulicChamber() ? idx++ : -1;
-  if (sm.stateChamberOil >= 0) sm.chamberOil = ChamberOilLaw(m.tensioner.hydraulic.oil);
   sm.nStates = idx;
 }
 

@@ -28,7 +28,6 @@
 #include <vector>
 
 #include "assembly/model.h"
-#include "span/chamber_oil.h"
 
 namespace chaindrive::span {
 
@@ -113,7 +112,6 @@ struct SpanModel {
   std::vector<int> stateAngle, stateRate;  // (rotors); rate -1 when prescribed
   int stateInputWork = -1, stateDissipated = -1;
   int stateChamberOil = -1;  // a hydraulic tensioner's chamber: its oil content [m3] (-1: none)
-  ChamberOilLaw chamberOil;  // (with a chamber) its pressure over the content's volume ratio
 };
 
 /// Assembles the span model of an assembled link model (which must outlive it), with its spans'

@@ -44,7 +44,7 @@ void monitoredLinkOutputs(const SpanModel& m, const SpanData& d, int monitoredLi
 
 void computeSpanOutputs(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y,
                         int monitoredLink, Outputs& out) {
-  d.quasiStatic = false;
+  d.quasiStatic = d.chamber.held = false;
   evaluateSpanForces(m, d, in, t, y);
   const Model& lm = *m.links;
   out.time = t;

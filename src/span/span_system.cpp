@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "dynamics/body_forces.h"
 #include "dynamics/health.h"
 #include "math/elementary.h"
 
@@ -60,20 +61,14 @@ void SpanSystem::toleranceScales(double* scale) const {
   }
   scale[model_.stateInputWork] = 1.0;
   scale[model_.stateDissipated] = 1.0;
-  if (model_.stateChamberOil >= 0) {  // the content a change of 1 bar moves: V0 1e5 Pa / K
-    const HydraulicTensionerDesc& h = model_.links->tensioner.hydraulic;
-    scale[model_.stateChamberOil] = h.chamberVolume * 1e5 / h.oil.bulkModulus;
-  }
+  if (model_.stateChamberOil >= 0) scale[model_.stateChamberOil] = chamberOilScale(model_.links->tensioner.hydraulic);
 }
 
 bool SpanSystem::healthy(double t, const double* y, Failure& why) noexcept {
   // finite state; no span stretched beyond the blow-up deformation per link; every pivoting
   // guide inside the angle range of its table
   if (!finiteState(y, model_.nStates, why)) return false;
-  if (model_.stateChamberOil >= 0 && !(y[model_.stateChamberOil] > 0.0)) {
-    why = {FailureKind::BlowUp, "blow-up at t = " + std::to_string(t) + " s: the tensioner's chamber emptied"};
-    return false;
-  }
+  if (model_.stateChamberOil >= 0 && !chamberFilled(y[model_.stateChamberOil], t, why)) return false;
   const Model& lm = *model_.links;
   for (std::size_t i = 0; i < model_.spans.size(); ++i) {
     const double perLink = std::fabs(data_.spans[i].stretch) / model_.spans[i].links;
@@ -110,7 +105,8 @@ std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
 void setChamberAtRest(const SpanModel& m, double supplyPressure, std::vector<double>& y) {
   const TensionerModel& t = m.links->tensioner;
   const double a = y[m.stateAngle[t.rotor]];
-  y[m.stateChamberOil] = chamberOilAt(m, math::cos(a), math::sin(a), chamberRestPressure(t.hydraulic, supplyPressure));
+  y[m.stateChamberOil] = chamberOilAt(t, m.links->rotors[t.rotor].axis, math::cos(a), math::sin(a),
+                                      chamberRestPressure(t.hydraulic, supplyPressure));
 }
 
 namespace {
@@ -176,7 +172,10 @@ std::vector<double> spanInitialState(const SpanModel& m, const InputValues& inpu
     return y;
   }
   StaticSolve solve(m, inputs);
-  if (chamber) solve.d.heldChamberPressure = chamberRestPressure(m.links->tensioner.hydraulic, inputs.supplyPressure);
+  if (chamber) {
+    solve.d.chamber.held = true;
+    solve.d.chamber.pressure = chamberRestPressure(m.links->tensioner.hydraulic, inputs.supplyPressure);
+  }
   // the solve at the nominal rates of the sprockets and at rest for the guides
   double rMax = 0.0;
   const int it = solve.run(y, opt, rMax);

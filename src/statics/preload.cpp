@@ -179,6 +179,10 @@ PreloadSolve::PreloadSolve(const Model& model, const InputValues& inputs, const 
   held.values = inputs;
   held.values.loadTorque.resize(m.rotors.size(), 0.0);
   held.values.crankSpeed = 0.0;  // the driven sprocket is held at rest
+  if (m.stateChamberOil >= 0) {  // a hydraulic chamber at rest, its pressure held whatever the guide's angle
+    d.chamber.held = true;
+    d.chamber.pressure = chamberRestPressure(m.tensioner.hydraulic, inputs.supplyPressure);
+  }
   scale = perFreeCoordinate(m, free, 1.0, 1.0 / m.chain.pitch, [](std::size_t) { return 1.0 / 0.05; });
   massDiag = perFreeCoordinate(m, free, m.chain.mass, m.chain.inertia,
                                [this](std::size_t r) { return m.rotors[r].inertia; });
@@ -366,9 +370,16 @@ std::vector<double> nominalState(const Model& m, const std::vector<double>& rate
     y[ro.stateAngle] = ro.initialAngle;
     if (ro.stateRate >= 0) y[ro.stateRate] = rates[r];
   }
-  if (m.stateChamberPressure >= 0)
-    y[m.stateChamberPressure] = chamberRestPressure(m.tensioner.hydraulic, m.tensioner.hydraulic.supplyPressure);
+  setChamberAtRest(m, m.tensioner.hydraulic.supplyPressure, y);
   return y;
+}
+
+void setChamberAtRest(const Model& m, double supplyPressure, std::vector<double>& y) {
+  if (m.stateChamberOil < 0) return;
+  const int r = m.tensioner.rotor;
+  const double a = y[m.rotors[r].stateAngle];
+  y[m.stateChamberOil] = chamberOilAt(m.tensioner, m.rotors[r].axis, math::cos(a), math::sin(a),
+                                      chamberRestPressure(m.tensioner.hydraulic, supplyPressure));
 }
 
 // A table of contents: the nominal state, the loads, the solve at rest over the free
@@ -380,8 +391,9 @@ std::vector<double> initialState(const Model& m, const InputValues& inputs, cons
   const std::vector<double> yNominal = y;
   if (guess) y = *guess;  // its velocities are set below, its chamber too
   // a hydraulic tensioner's chamber at rest: filled to the supply's pressure less the check
-  // valve's cracking pressure (the valve just closed); the solve holds it
-  if (m.stateChamberPressure >= 0) y[m.stateChamberPressure] = chamberRestPressure(m.tensioner.hydraulic, inputs.supplyPressure);
+  // valve's cracking pressure (the valve just closed); the solve holds that pressure, the content
+  // is then the one that fills the chamber with it at the solved pose
+  setChamberAtRest(m, inputs.supplyPressure, y);
   report = PreloadReport{};
   if (!opt.enabled) {
     report.converged = true;
@@ -397,6 +409,7 @@ std::vector<double> initialState(const Model& m, const InputValues& inputs, cons
   const int it = solve.run(y, opt, report);
   // the start state: the preloaded pose with the nominal velocities
   setVelocities(m, y, &yNominal);
+  setChamberAtRest(m, inputs.supplyPressure, y);
   finishReport(report, it, solve.rMax, opt, t0);
   if (!std::isfinite(solve.r0)) throw std::runtime_error("preload solve diverged (non-finite residual)");
   return y;

@@ -37,6 +37,11 @@ std::vector<double> nominalState(const Model& m, double crankSpeed);
 /// at it along the path, pins on a wheel with the wheel).
 std::vector<double> nominalState(const Model& m, const std::vector<double>& rates, double chainSpeed);
 
+/// A hydraulic tensioner's chamber at rest in state y: the oil content that fills it, at the
+/// guide's angle in y, to the supply's gauge pressure [Pa] less the check valve's cracking
+/// pressure (the valve just closed). Nothing without a chamber.
+void setChamberAtRest(const Model& m, double supplyPressure, std::vector<double>& y);
+
 /// Nominal state, pre-loaded. Throws std::runtime_error if the solve diverges (with the reason).
 /// `guess`: the solve starts from its positions instead of the nominal pose (a nearby solution).
 std::vector<double> initialState(const Model& m, const InputValues& inputs, const PreloadOptions& opt,

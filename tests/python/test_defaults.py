@@ -70,13 +70,19 @@ def test_the_command_line_tools_default_to_the_table(table):
 
 def test_the_model_descriptions_start_from_the_table(table):
     link, span, cvt = table["timing"]["link"], table["timing"]["span"], table["cvt"]["link"]
+    clearance = link["clearanceOrRigid"]
     chain = parameter_starts("modelDescription.xml")
-    assert chain["solver.method"][0] == link["method"]
+    method, text = chain["solver.method"]
+    assert method == ""  # empty: the fidelity's own method, named in the description
+    assert f"the fidelity's own, {link['method']} (link) or {span['method']} (span); a drive whose joints have " \
+           f"clearance, or rigid contacts: {clearance['method']} (link)" in text
     assert float(chain["solver.tolerance"][0]) == link["tolerance"]
     step, text = chain["solver.step"]
     assert float(step) == 0.0  # 0: the fidelity's own step, named in the description
     named = {fidelity: float(value) for value, fidelity in re.findall(r"([0-9.e+-]+) s \((link|span)\)", text)}
     assert named == {"link": link["step_s"], "span": span["step_s"]}
+    named = re.findall(r"([0-9.e+-]+) s \(link, a drive whose joints have clearance, or rigid contacts\)", text)
+    assert [float(value) for value in named] == [clearance["step_s"]]
     belt = parameter_starts("CVTChain.xml")
     assert belt["solver.method"][0] == cvt["method"]
     assert float(belt["solver.tolerance"][0]) == cvt["tolerance"]
@@ -98,8 +104,95 @@ def test_the_fmu_steps_with_the_fidelitys_default_step(table, fidelity):
 def test_the_defaults_page_shows_the_table(table):
     """docs/defaults.md's table rows are the table's, row by row."""
     page = (paths.ROOT / "docs" / "defaults.md").read_text()
-    rows = re.findall(r"^\| (timing|cvt) \| (link|span) \| ([\w-]+) \| ([0-9.e+-]+) s \| ([0-9.e+-]+) \|", page, re.M)
-    shown = {(scene, fidelity): (method, float(step), float(tol)) for scene, fidelity, method, step, tol in rows}
-    expected = {(scene, fidelity): (row["method"], row["step_s"], row["tolerance"])
-                for scene, fidelities in table.items() for fidelity, row in fidelities.items()}
+    rows = re.findall(r"^\| (timing|cvt) \| (link|span)( \(joints with clearance, or rigid contacts\))? \| ([\w-]+) \| ([0-9.e+-]+) s \| "
+                      r"([0-9.e+-]+) \|", page, re.M)
+    shown = {(scene, fidelity, bool(clearance)): (method, float(step), float(tol))
+             for scene, fidelity, clearance, method, step, tol in rows}
+    expected = {}
+    for scene, fidelities in table.items():
+        for fidelity, row in fidelities.items():
+            for clearance, r in ((False, row), (True, row.get("clearanceOrRigid"))):
+                if r:
+                    expected[scene, fidelity, clearance] = (r["method"], r["step_s"], r["tolerance"])
     assert shown == expected
+
+
+def test_time_stepping_takes_the_rigid_contacts_row(table, tmp_path):
+    """Time stepping integrates rigid contacts, which the real-time method does not: without
+    solver.step the FMU steps it at the table's row for rigid contacts, chosen by its parameter
+    contact.method or by the drive's contact method; the harness's job takes that row for such a
+    drive too."""
+    row = table["timing"]["link"]["clearanceOrRigid"]
+    drive = json.loads((paths.ROOT / "src" / "drives" / "default_drive.json").read_text())
+    drive["contact"]["method"] = "time-stepping"
+    rigid_drive = tmp_path / "rigid_drive.json"
+    rigid_drive.write_text(json.dumps(drive))
+    for name, parameters in (("parameter", {"contact.method": "time-stepping"}), ("drive", {"driveFile": str(rigid_drive)})):
+        slave = fmu.Slave(f"defaults-rigid-{name}", parameters=parameters)
+        slave.initialize(inputs={"crankshaft.w": fmu.rpm_to_rad_s(3000.0)})
+        slave.step(1e-4, t=0.0)
+        steps = slave.get(["solver.steps"])["solver.steps"]
+        slave.close()
+        assert steps == round(1e-4 / row["step_s"]), name
+    config = job.run_config(drive=str(rigid_drive))
+    assert (config.method, config.solver_step) == (row["method"], row["step_s"])
+
+
+@pytest.fixture(scope="module")
+def clearance_drive(tmp_path_factory):
+    """The default drive with 20 um of clearance in its joints."""
+    drive = json.loads((paths.ROOT / "src" / "drives" / "default_drive.json").read_text())
+    drive["chain"]["joint"]["clearance"] = 2e-5
+    path = tmp_path_factory.mktemp("clearance") / "clearance_drive.json"
+    path.write_text(json.dumps(drive))
+    return path
+
+
+def test_a_drive_with_joint_clearance_takes_its_own_row(table, clearance_drive):
+    """The link fidelity's real-time method needs joints without clearance: a drive whose joints
+    have clearance runs the table's row for it in the FMU, chaindrive-run and the harness's job."""
+    row = table["timing"]["link"]["clearanceOrRigid"]
+    assert row["method"] != table["timing"]["link"]["method"]
+    slave = fmu.Slave("defaults-clearance", parameters={"driveFile": str(clearance_drive)})
+    slave.initialize(inputs={"crankshaft.w": fmu.rpm_to_rad_s(3000.0)})
+    slave.step(1e-4, t=0.0)
+    steps = slave.get(["solver.steps"])["solver.steps"]
+    slave.close()
+    assert steps == round(1e-4 / row["step_s"])
+    summary = clearance_drive.parent / "summary.json"
+    subprocess.run([paths.executable("chaindrive-run"), "--drive", str(clearance_drive), "--duration", "1e-4",
+                    "--quiet", "--summary", str(summary)], check=True, capture_output=True)
+    assert json.loads(summary.read_text())["method"] == row["method"]
+    config = job.run_config(drive=str(clearance_drive))
+    assert (config.method, config.solver_step) == (row["method"], row["step_s"])
+
+
+def test_a_method_given_without_a_step_takes_its_rows_step(table, tmp_path):
+    """A run that names the method of another row (plain Verlet, the row for joints with clearance
+    or rigid contacts) but no step takes that row's step, not the real-time method's, which plain
+    Verlet would not hold: in the FMU, chaindrive-run and the harness's job."""
+    row = table["timing"]["link"]["clearanceOrRigid"]
+    slave = fmu.Slave("defaults-method", parameters={"solver.method": row["method"]})
+    slave.initialize(inputs={"crankshaft.w": fmu.rpm_to_rad_s(3000.0)})
+    slave.step(1e-4, t=0.0)
+    steps = slave.get(["solver.steps"])["solver.steps"]
+    slave.close()
+    assert steps == round(1e-4 / row["step_s"])
+    summary = tmp_path / "summary.json"
+    subprocess.run([paths.executable("chaindrive-run"), "--integrator", row["method"], "--duration", "1e-4",
+                    "--quiet", "--summary", str(summary)], check=True, capture_output=True)
+    assert json.loads(summary.read_text())["step"] == row["step_s"]
+    config = job.run_config(method=row["method"])
+    assert (config.method, config.solver_step) == (row["method"], row["step_s"])
+
+
+def test_a_method_without_a_row_takes_plain_verlets_step(table, tmp_path):
+    """A method with no row of its own (fixed-newmark), named without a step, takes the step of the
+    row for joints with clearance or rigid contacts, plain Verlet's checked step, not the real-time
+    method's longer one, at which it is not checked: in chaindrive-run and the harness's job."""
+    row = table["timing"]["link"]["clearanceOrRigid"]
+    summary = tmp_path / "summary.json"
+    subprocess.run([paths.executable("chaindrive-run"), "--integrator", "fixed-newmark", "--duration", "1e-4",
+                    "--quiet", "--summary", str(summary)], check=True, capture_output=True)
+    assert json.loads(summary.read_text())["step"] == row["step_s"]
+    assert job.run_config(method="fixed-newmark").solver_step == row["step_s"]

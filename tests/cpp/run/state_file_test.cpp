@@ -82,9 +82,29 @@ TEST(StateFile, StateOfAnotherDriveIsRefused) {
   EXPECT_NE(readError(links).find("a state of another drive"), std::string::npos) << readError(links);
 }
 
+// A file of the schema before the chamber's oil content ("chaindrive.state/2") holds a hydraulic
+// chamber's pressure where this version keeps its content: refused for such a drive, naming the
+// change; read as before for a drive without a chamber (the same layout).
+TEST(StateFile, PressureStateOfAHydraulicChamberIsRefused) {
+  const std::string old = editedFile("pressure_state.json", [](json& j) { j["schema"] = "chaindrive.state/2"; });
+  EXPECT_NE(readError(old).find("the hydraulic chamber's pressure as its state"), std::string::npos) << readError(old);
+
+  const Model spring = assemble(modifiedDefault(useSpringDamperTensioner));
+  ASSERT_LT(spring.stateChamberOil, 0);
+  const std::string path = tempPath("spring_damper_v2.json");
+  writeStateFile(path, spring, awkwardState(spring));
+  json j;
+  std::ifstream(path) >> j;
+  j["schema"] = "chaindrive.state/2";
+  std::ofstream(path) << j.dump(1) << "\n";
+  const StateSnapshot back = readStateFile(path, spring, spring.nStates);
+  EXPECT_TRUE(sameBits(back.y[3], -0.0));
+  EXPECT_EQ(back.y.size(), static_cast<std::size_t>(spring.nStates));
+}
+
 TEST(StateFile, CorruptFilesAreRefusedNamingTheProblem) {
   const std::string garbage = tempPath("garbage.json");
-  std::ofstream(garbage) << "{\"schema\": \"chaindrive.state/2\", \"y\": [";
+  std::ofstream(garbage) << "{\"schema\": \"chaindrive.state/3\", \"y\": [";
   EXPECT_NE(readError(garbage).find(garbage + ": not valid JSON"), std::string::npos) << readError(garbage);
 
   const std::string schema = editedFile("schema.json", [](json& j) { j["schema"] = "chaindrive.state/0"; });

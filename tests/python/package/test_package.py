@@ -132,7 +132,7 @@ def test_a_missing_resources_folder_is_a_logged_warning(unpacked, work):
         s.messages
 
 
-@pytest.mark.parametrize("method,duration", [(None, 0.030), ("fixed-verlet-implicit-joint-damping", 0.030),
+@pytest.mark.parametrize("method,duration", [(None, 0.030), ("fixed-verlet", 0.030),
                                              ("arkode-erk", 0.005), ("cvode-bdf-klu", 0.003)])
 def test_chaindrive_win64_under_wine_gives_the_linux64_bits(unpacked, master, work, method, duration):
     linux = compare.run_timing(unpacked["ChainDrive"], duration, method)
@@ -146,7 +146,7 @@ def test_cvtchain_win64_under_wine_gives_the_linux64_bits(unpacked, master, work
     assert_identical(compare.compare(linux, windows), "CVTChain")
 
 
-@pytest.mark.parametrize("method", [None, "fixed-verlet-implicit-joint-damping"])
+@pytest.mark.parametrize("method", [None, "fixed-verlet"])
 def test_chaindrive_built_from_its_sources_gives_the_linux64_bits(unpacked, source_built, method):
     runs = [compare.run_timing(d, 0.030, method) for d in (unpacked["ChainDrive"], source_built["ChainDrive"])]
     assert_identical(compare.compare(*runs), f"ChainDrive {method or 'default method'}")

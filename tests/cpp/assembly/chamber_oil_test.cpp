@@ -1,7 +1,7 @@
-// The span model's chamber state (its oil content): the tabulated pressure against the mixture's
-// law it inverts, its modulus against the link model's, cavitation at the floor, and the step
-// convergence the content state was made for.
-#include "span/chamber_oil.h"
+// A hydraulic chamber's state in both fidelities (its oil content): the tabulated pressure against
+// the mixture's law it inverts, its modulus against the effective bulk modulus, cavitation at the
+// floor, and the step convergence the content state was made for (the span model's).
+#include "assembly/chamber_oil.h"
 
 #include <cmath>
 
@@ -12,7 +12,7 @@
 #include "run/simulation.h"
 #include "test_util.h"
 
-namespace chaindrive::span {
+namespace chaindrive {
 namespace {
 
 using test::defaultModel;
@@ -28,9 +28,9 @@ TEST(ChamberOil, TablePressureInvertsTheMixtureLaw) {
   }
 }
 
-// -v / v' of the span's law is the link model's effective bulk modulus within the free air's
-// fraction (the law leaves the oil's own compression out of the air's share).
-TEST(ChamberOil, ModulusIsTheLinkModelsWithinTheAirFraction) {
+// -v / v' of the law is the effective bulk modulus (dynamics/hydraulic_tensioner.h) within the free
+// air's fraction (the law leaves the oil's own compression out of the air's share).
+TEST(ChamberOil, ModulusIsTheEffectiveBulkModulusWithinTheAirFraction) {
   const OilDesc oil;
   const ChamberOilLaw law(oil);
   for (double p : {0.0, 1e5, 3e5, 1e6, 5e6, 2e7}) {
@@ -83,4 +83,4 @@ TEST(ChamberOil, PumpedUpChamberConvergesWithTheStep) {
 }
 
 }  // namespace
-}  // namespace chaindrive::span
+}  // namespace chaindrive

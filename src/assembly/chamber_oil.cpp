@@ -1,12 +1,11 @@
-#include "span/chamber_oil.h"
+#include "assembly/chamber_oil.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "dynamics/hydraulic_tensioner.h"
 #include "math/elementary.h"
 
-namespace chaindrive::span {
+namespace chaindrive {
 
 namespace {
 
@@ -14,6 +13,15 @@ constexpr double kTopPressure = 2e8;  // [Pa] the table's top (2000 bar); above 
 constexpr int kIntervals = 4096;
 
 }  // namespace
+
+// The isothermal-polytropic mixture of Simscape's hydraulic fluid: per unit volume of oil, free
+// air of volume a(p) = alpha (p_atm / p_abs)^(1/n), compressed polytropically (its modulus n p_abs)
+// in parallel with the oil (modulus K). The oil's own volume change is left out of the mixture's
+// volume (it is below 1 % up to 100 bar).
+FreeAir freeAir(const OilDesc& oil, double pressure) {
+  const double pAbs = std::max(pressure + oil.atmosphericPressure, oil.vapourPressure);
+  return {pAbs, oil.airFraction * math::pow(oil.atmosphericPressure / pAbs, 1.0 / oil.polytropicExponent)};
+}
 
 double ChamberOilLaw::volumeRatio(double pressure) const {
   const double air = freeAir(oil_, pressure).perOil;
@@ -54,6 +62,7 @@ ChamberOilLaw::ChamberOilLaw(const OilDesc& oil) : oil_(oil) {
 
 double ChamberOilLaw::pressureAt(double ratio) const {
   const double u = (math::log(ratio) - logTop_) / logStep_;
+  if (std::isnan(u)) return u;  // (a content no longer positive, or a non-finite state: the health check names it)
   if (u >= kIntervals) return floor_;
   if (u <= 0.0) return pressure_[0] + u * logStep_ * slope_[0];
   const int i = std::min(static_cast<int>(u), kIntervals - 1);
@@ -63,4 +72,4 @@ double ChamberOilLaw::pressureAt(double ratio) const {
   return h00 * pressure_[i] + h10 * h * slope_[i] + h01 * pressure_[i + 1] + h11 * h * slope_[i + 1];
 }
 
-}  // namespace chaindrive::span
+}  // namespace chaindrive
