@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "linear/array_loops.h"
+#include "math/elementary.h"
 
 namespace chaindrive {
 
@@ -72,6 +73,17 @@ void fillChamber(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, 
 
 double chamberOilAt(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double pressure) {
   return chamberVolume(t.hydraulic, tensionerStroke(t, pivot, cosA, sinA)) / t.chamberOil.volumeRatio(pressure);
+}
+
+double chamberOilAtRest(const Model& m, double guideAngle, double supplyPressure) {
+  const TensionerModel& t = m.tensioner;
+  return chamberOilAt(t, m.rotors[t.rotor].axis, math::cos(guideAngle), math::sin(guideAngle),
+                      chamberRestPressure(t.hydraulic, supplyPressure));
+}
+
+void holdChamberAtRest(const TensionerModel& t, double supplyPressure, ChamberState& chamber) {
+  chamber.held = true;
+  chamber.pressure = chamberRestPressure(t.hydraulic, supplyPressure);
 }
 
 double chamberOilRate(const TensionerModel& t, const ChamberState& chamber, const HydraulicFlows& flows) {

@@ -30,6 +30,12 @@ void fillChamber(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, 
                  ChamberState& chamber);
 /// The oil content [m3] that fills the chamber at gauge pressure [Pa] with the guide at angle (cos, sin).
 double chamberOilAt(const TensionerModel& t, Vec2 pivot, double cosA, double sinA, double pressure);
+/// The content that fills the chamber at rest, at the supply's gauge pressure [Pa] less the check
+/// valve's cracking pressure (chamberRestPressure), with the guide at `guideAngle` [rad]: a start state's.
+double chamberOilAtRest(const Model& m, double guideAngle, double supplyPressure);
+/// Holds a chamber at rest for a static solve: its pressure chamberRestPressure at the supply's
+/// gauge pressure [Pa], whatever its content.
+void holdChamberAtRest(const TensionerModel& t, double supplyPressure, ChamberState& chamber);
 /// The content's rate [m3/s]: the valves' and the leak's flows at the filled chamber.
 double chamberOilRate(const TensionerModel& t, const ChamberState& chamber, const HydraulicFlows& flows);
 

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "dynamics/body_forces.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/joint_forces.h"
 #include "statics/preload.h"
@@ -55,10 +56,7 @@ void spanAtPose(const SpanModel& sm, const std::vector<double>& yLink, const Inp
   for (std::size_t r = 0; r < m.rotors.size(); ++r) y[sm.stateAngle[r]] = yLink[m.rotors[r].stateAngle];
   SpanData d(sm);
   d.quasiStatic = true;
-  if (sm.stateChamberOil >= 0) {  // at rest, held (as the link model's statics hold it)
-    d.chamber.held = true;
-    d.chamber.pressure = chamberRestPressure(m.tensioner.hydraulic, in.supplyPressure);
-  }
+  if (sm.stateChamberOil >= 0) holdChamberAtRest(m.tensioner, in.supplyPressure, d.chamber);  // as the link model's statics
   d.prescribedTension = tension;
   HeldInputs held(m);
   held.values = in;

@@ -103,10 +103,7 @@ std::vector<double> nominalSpanState(const SpanModel& m, double crankSpeed) {
 }
 
 void setChamberAtRest(const SpanModel& m, double supplyPressure, std::vector<double>& y) {
-  const TensionerModel& t = m.links->tensioner;
-  const double a = y[m.stateAngle[t.rotor]];
-  y[m.stateChamberOil] = chamberOilAt(t, m.links->rotors[t.rotor].axis, math::cos(a), math::sin(a),
-                                      chamberRestPressure(t.hydraulic, supplyPressure));
+  y[m.stateChamberOil] = chamberOilAtRest(*m.links, y[m.stateAngle[m.links->tensioner.rotor]], supplyPressure);
 }
 
 namespace {
@@ -172,10 +169,7 @@ std::vector<double> spanInitialState(const SpanModel& m, const InputValues& inpu
     return y;
   }
   StaticSolve solve(m, inputs);
-  if (chamber) {
-    solve.d.chamber.held = true;
-    solve.d.chamber.pressure = chamberRestPressure(m.links->tensioner.hydraulic, inputs.supplyPressure);
-  }
+  if (chamber) holdChamberAtRest(m.links->tensioner, inputs.supplyPressure, solve.d.chamber);
   // the solve at the nominal rates of the sprockets and at rest for the guides
   double rMax = 0.0;
   const int it = solve.run(y, opt, rMax);

@@ -179,10 +179,7 @@ PreloadSolve::PreloadSolve(const Model& model, const InputValues& inputs, const 
   held.values = inputs;
   held.values.loadTorque.resize(m.rotors.size(), 0.0);
   held.values.crankSpeed = 0.0;  // the driven sprocket is held at rest
-  if (m.stateChamberOil >= 0) {  // a hydraulic chamber at rest, its pressure held whatever the guide's angle
-    d.chamber.held = true;
-    d.chamber.pressure = chamberRestPressure(m.tensioner.hydraulic, inputs.supplyPressure);
-  }
+  if (m.stateChamberOil >= 0) holdChamberAtRest(m.tensioner, inputs.supplyPressure, d.chamber);
   scale = perFreeCoordinate(m, free, 1.0, 1.0 / m.chain.pitch, [](std::size_t) { return 1.0 / 0.05; });
   massDiag = perFreeCoordinate(m, free, m.chain.mass, m.chain.inertia,
                                [this](std::size_t r) { return m.rotors[r].inertia; });
@@ -376,10 +373,7 @@ std::vector<double> nominalState(const Model& m, const std::vector<double>& rate
 
 void setChamberAtRest(const Model& m, double supplyPressure, std::vector<double>& y) {
   if (m.stateChamberOil < 0) return;
-  const int r = m.tensioner.rotor;
-  const double a = y[m.rotors[r].stateAngle];
-  y[m.stateChamberOil] = chamberOilAt(m.tensioner, m.rotors[r].axis, math::cos(a), math::sin(a),
-                                      chamberRestPressure(m.tensioner.hydraulic, supplyPressure));
+  y[m.stateChamberOil] = chamberOilAtRest(m, y[m.rotors[m.tensioner.rotor].stateAngle], supplyPressure);
 }
 
 // A table of contents: the nominal state, the loads, the solve at rest over the free
