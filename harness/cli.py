@@ -10,6 +10,8 @@
     python -m harness tensioner-study the hydraulic tensioner against the spring-damper law (harness/study/tensioner.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
     python -m harness bench-realtime the link model's real-time factor through the FMU (harness/bench/realtime.py)
+    python -m harness realtime-chart the real-time candidates' work-precision chart (harness/bench/realtime_chart.py)
+    python -m harness realtime-floor the floor under the routes to a quarter of real time (harness/bench/realtime_floor.py)
     python -m harness bench-fidelity the span model's cost against the real-time method's (harness/bench/fidelity_cost.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
     python -m harness bench-sweep    a sweep on 1 and 2 Dask workers and in a plain loop (harness/bench/sweep.py)
@@ -57,6 +59,10 @@ COMMANDS = {
     "bench": ("harness.bench.benchmark", "integrator benchmark of the solver alone"),
     "bench-realtime": ("harness.bench.realtime", "the link model's real-time factor and step-time spread through "
                        "ChainDrive.fmu, its accuracy against a reference"),
+    "realtime-chart": ("harness.bench.realtime_chart", "the real-time candidates' cost against their accuracy table, "
+                       "from bench-realtime's reports: the work-precision chart"),
+    "realtime-floor": ("harness.bench.realtime_floor", "the real-time factor the routes to a quarter of real time "
+                       "could at best reach: the links in contact at the longest accurate step, the others free"),
     "bench-fidelity": ("harness.bench.fidelity_cost", "the span model's cost against the link model's real-time "
                        "method through ChainDrive.fmu, in one run"),
     "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),

@@ -28,7 +28,8 @@ With --replicas K the accuracy is that of an ensemble (harness/replicas.py): the
 and K - 1 runs with the crankshaft-speed input perturbed, each interval from the spread between
 their means (at 6000 rpm with the hydraulic tensioner, one run's intervals understate the guide's
 peak-to-peak's; compare with a reference made the same way, `python -m harness run --replicas K`).
-The machine heads the report, which is also written as Markdown to --out. Run nothing else on
+The machine heads the report, which is also written as Markdown to --out, and its figures as JSON
+beside it (the same name, .json; `python -m harness realtime-chart` draws them). Run nothing else on
 the machine meanwhile: CPU timings of shared cores are noisy (compare medians and ratios of one run).
 
 Hosts differ: the same build, the same instructions per link and step, has run 2.9 times as fast on
@@ -38,6 +39,7 @@ run, so the start drops out; median of HOST_REPEATS), as CPU s per simulated s a
 of different hosts compare through it.
 """
 import json
+import math
 import pathlib
 import tempfile
 
@@ -47,8 +49,10 @@ from .. import job, paths, replicas, runs
 from ..drive.description import drive_json
 from ..study import ladder
 
-# real-time factor targets per speed [CPU s per simulated s inside fmi2DoStep]; spread targets
-RTF_TARGET = {3000.0: 1.0, 6000.0: 1.5}
+# real-time factor targets per speed [CPU s inside fmi2DoStep per simulated s]: a quarter of real time
+# at 3000 rpm and about a third at 6000 rpm, a hardware-in-the-loop rig's budget for one model in its
+# frame (room for I/O, the rest of the plant and several drives per core); spread targets
+RTF_TARGET = {3000.0: 0.25, 6000.0: 0.35}
 P99_TARGET, MAX_TARGET = 1.5, 3.0  # p99 / median and max / median of the CPU per fmi2DoStep
 # the host's speed: the solver alone on the default drive, plain Verlet at 2.5 us
 HOST_WORKLOAD = dict(rpm=3000.0, integrator="fixed-verlet", step=2.5e-6, output_step=1e-3)
@@ -109,15 +113,18 @@ def spread(cpu):
 
 
 def timing(scene_runs, steps_per_cycle):
-    """RTF of each run, and the spread of the CPU per fmi2DoStep (the first step, which carries the
-    start, left out): of the model (each step's minimum over the runs) and of the first run as
-    measured; and the spread the model itself makes over the crank angle: the median of the model's
-    step costs over the cycles at each crank angle, its largest over its smallest."""
-    per_run = np.array([r.step_cpus[1:] for r in scene_runs])
+    """RTF of each run and of the model (rtfModel: each step's minimum over the runs, summed), and the
+    spread of the CPU per fmi2DoStep (the first step, which carries the start, left out): of the
+    model and of the first run as measured; and the spread the model itself makes over the crank
+    angle: the median of the model's step costs over the cycles at each crank angle, its largest
+    over its smallest."""
+    all_steps = np.array([r.step_cpus for r in scene_runs])
+    per_run = all_steps[:, 1:]
     model = per_run.min(axis=0)
     cycles = len(model) // steps_per_cycle
     by_angle = np.median(model[:cycles * steps_per_cycle].reshape(cycles, steps_per_cycle), axis=0)
     return dict(rtf=[r.step_cpu / r.duration for r in scene_runs], steps=len(model), runs=len(scene_runs),
+                rtfModel=math.fsum(all_steps.min(axis=0)) / scene_runs[0].duration,
                 model=spread(model), measured=spread(per_run[0]), by_angle=float(by_angle.max() / by_angle.min()),
                 cycles=cycles)
 
@@ -160,7 +167,8 @@ def timing_lines(rpm, t, step):
     rtf_verdict = f" (target <= {target:g}: {verdict(rtf <= target)})" if target else ""
     runs = ", ".join(f"{x:.3g}" for x in t["rtf"])
     return [f"- RTF (CPU s inside fmi2DoStep per simulated s): **{rtf:.3g}**{rtf_verdict}"
-            + (f" (the slowest of {t['runs']} bit-identical runs: {runs})" if t["runs"] > 1 else ""),
+            + (f" (the slowest of {t['runs']} bit-identical runs: {runs}; the model's, each step's minimum over "
+               f"the runs: {t['rtfModel']:.3g})" if t["runs"] > 1 else ""),
             f"- CPU per fmi2DoStep of {step * 1e3:g} ms over {t['steps']} steps, the model's (each step's minimum over "
             f"the {t['runs']} runs): {spread_text(model)} (targets: p99 / median <= {P99_TARGET:g}: "
             f"{verdict(p99 <= P99_TARGET)}; max / median <= {MAX_TARGET:g}: {verdict(mx <= MAX_TARGET)})",
@@ -176,10 +184,13 @@ def cycles_cell(stat):
     return f"{stat['cycles']} cycles" if k == 1 else f"{k} x {stat['cycles'] // k} cycles"
 
 
-def accuracy_lines(reference, summary):
-    keys = list(summary)
-    tolerances = [ladder.parse_tolerance(t, keys) for t in TOLERANCES]
-    rows = ladder.compare(reference, summary, tolerances)
+def accuracy_rows(reference, summary):
+    """ladder.compare's rows of the quantities with a tolerance (TOLERANCES)."""
+    tolerances = [ladder.parse_tolerance(t, list(summary)) for t in TOLERANCES]
+    return ladder.compare(reference, summary, tolerances)
+
+
+def accuracy_lines(reference, summary, rows):
     lines = ["| quantity | reference | this run | difference | tolerance | meets | within scatter |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -210,10 +221,51 @@ def difference(scene_runs):
     return None
 
 
+# what every speed of a report's JSON holds (speed_record), and the report itself
+SPEED_KEYS = ("rpm", "method", "step", "rtf", "p99OverMedian", "accuracy")
+REPORT_KEYS = ("host", "speeds")
+
+
+def load_report(ap, path):
+    """A JSON report of this benchmark read for another command (its parser ap reports a file that
+    is not one, naming the file and what is missing)."""
+    try:
+        report = json.loads(pathlib.Path(path).read_text())
+    except (OSError, ValueError) as e:
+        ap.error(f"{path}: not a readable JSON report of bench-realtime ({e})")
+    missing = [k for k in REPORT_KEYS if not isinstance(report, dict) or k not in report]
+    if not missing:
+        missing = [f"speeds[{i}].{k}" for i, s in enumerate(report["speeds"]) for k in SPEED_KEYS
+                   if not isinstance(s, dict) or k not in s]
+    if missing:
+        ap.error(f"{path}: not a report of bench-realtime (no {', '.join(missing[:3])}; reports written before "
+                 f"bench-realtime wrote JSON have only their Markdown)")
+    return report
+
+
+def model_rtf(speed):
+    """A report's speed's RTF for comparing methods: the model's (each step's minimum over the
+    repeated runs, summed: the machine's interruptions left out) where the report has it, else the
+    slowest run's (reports written before it had it)."""
+    return speed.get("rtfModel", speed["rtf"])
+
+
+def speed_record(rpm, config, t, rows):
+    """One speed of the report's JSON: the method, its timing (t: timing()) and its accuracy rows
+    (empty without a reference)."""
+    return dict(rpm=rpm, method=config.method, step=config.solver_step, cycles=config.cycles,
+                rtf=max(t["rtf"]), rtfRuns=t["rtf"], rtfModel=t["rtfModel"], rtfTarget=RTF_TARGET.get(rpm),
+                model=t["model"],
+                p99OverMedian=t["model"]["p99"] / t["model"]["median"], accuracy=rows)
+
+
 def run(args):
+    command = f"python -m harness bench-realtime {' '.join(args.argv)}"
+    host = host_speed()
     lines = ["# Real-time benchmark: the link model through ChainDrive.fmu", "",
-             f"Machine: {runs.machine()}; command: python -m harness bench-realtime {' '.join(args.argv)}", "",
-             host_line(*host_speed()), ""]
+             f"Machine: {runs.machine()}; command: {command}", "", host_line(*host), ""]
+    record = dict(machine=runs.machine(), command=command, replicas=args.replicas,
+                  host=dict(cpuPerSimulatedSecond=host[0], cpuPerLinkStep=host[1]), speeds=[])
     print("\n".join(lines))
     for rpm in args.rpm:
         config = scene_config(args, rpm)
@@ -226,14 +278,20 @@ def run(args):
         section = [f"## {rpm:g} rpm: {config.method} at {config.solver_step * 1e6:g} us, closed loop, {args.cycles} "
                    f"cycles after {scene_run.run_in} run-in", ""]
         steps_per_cycle = round(120.0 / rpm / config.step)  # (an engine cycle: two crank revolutions)
-        section += timing_lines(rpm, timing(scene_runs, steps_per_cycle), config.step) + [""]
-        reference = args.references.get(rpm)
+        t = timing(scene_runs, steps_per_cycle)
+        section += timing_lines(rpm, t, config.step) + [""]
+        reference, rows = args.references.get(rpm), []
         if reference:
             if args.replicas > 1:
                 summary = ensemble_summary(config, summary, args.replicas)
                 section.append(f"Accuracy over {args.replicas} replicas (harness/replicas.py):")
-            section += accuracy_lines(reference, summary) + [""]
+            rows = accuracy_rows(reference, summary)
+            section += accuracy_lines(reference, summary, rows) + [""]
         print("\n".join(section))
         lines += section
+        record["speeds"].append(speed_record(rpm, config, t, rows))
     runs.write_lines(args.out, lines)
+    json_out = pathlib.Path(args.out).with_suffix(".json")
+    json_out.write_text(json.dumps(record, indent=1) + "\n")
+    print(f"written: {json_out}")
     return 0

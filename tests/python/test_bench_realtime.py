@@ -41,6 +41,7 @@ def test_the_models_cost_per_step_is_the_minimum_over_repeated_runs():
     a[5], b[8] = 9e-3, 9e-3
     t = realtime.timing([scene_run(a, 0.002), scene_run(b, 0.0021)], 4)
     assert t["model"]["max"] == pytest.approx(1e-3) and t["measured"]["max"] == pytest.approx(9e-3)
+    assert t["rtfModel"] == pytest.approx((0.5 + 20e-3) / 0.002)  # (the minima summed, the first step too)
     lines = "\n".join(realtime.timing_lines(3000.0, t, 1e-4))
     assert "max / median 1.00" in lines and "MISSES" not in lines.split("\n")[1]
     assert f"**{max(t['rtf']):.3g}**" in lines and "the slowest of 2 bit-identical runs" in lines
@@ -67,10 +68,12 @@ def test_accuracy_table_of_a_run_against_itself_meets_every_tolerance():
                for i, k in enumerate(["tensioner.F.mean", "chain.Ftight.mean", "chain.Fslack.mean",
                                       "tensionGuide.phi.peakToPeak_deg", "tensioner.F.order2", "tensioner.F.order4",
                                       "tensioner.F.order6", "tensioner.F.order8"])}
-    rows = [r for r in realtime.accuracy_lines(summary, summary) if r.startswith("| tensioner")]
+    lines = realtime.accuracy_lines(summary, summary, realtime.accuracy_rows(summary, summary))
+    rows = [r for r in lines if r.startswith("| tensioner")]
     assert len(rows) == 5 and all("| yes | yes" in r for r in rows)
     shifted = {k: dict(v, mean=v["mean"] * (1.05 if k == "tensioner.F.mean" else 1.0)) for k, v in summary.items()}
-    row = next(r for r in realtime.accuracy_lines(summary, shifted) if r.startswith("| tensioner.F.mean"))
+    lines = realtime.accuracy_lines(summary, shifted, realtime.accuracy_rows(summary, shifted))
+    row = next(r for r in lines if r.startswith("| tensioner.F.mean"))
     assert "+5.00 %" in row and "| NO |" in row
 
 
@@ -99,3 +102,12 @@ def test_short_run_reports_the_real_time_factor(tmp_path, capsys):
     assert "the model's own spread" in report and "the slowest of 2 bit-identical runs" in report
     assert "Host speed: the solver alone" in report and "ns per link and step" in report
     assert "RTF (CPU s inside fmi2DoStep per simulated s)" in report and "p99 / median" in report
+    # the same figures as JSON beside it, for the work-precision chart (harness/bench/realtime_chart.py)
+    record = json.loads(out.with_suffix(".json").read_text())
+    speed = record["speeds"][0]
+    assert speed["rpm"] == 6000.0 and speed["method"] == "fixed-verlet-implicit-joint-damping"
+    assert speed["rtf"] == max(speed["rtfRuns"]) and len(speed["rtfRuns"]) == 2
+    assert f"**{speed['rtf']:.3g}**" in report and speed["rtfTarget"] == realtime.RTF_TARGET[6000.0]
+    assert speed["accuracy"] == [] and record["host"]["cpuPerSimulatedSecond"] > 0
+    assert 0 < speed["rtfModel"] <= speed["rtf"] and f"the model's, each step's minimum over the runs: " \
+        f"{speed['rtfModel']:.3g}" in report
