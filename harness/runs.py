@@ -76,6 +76,15 @@ def write_lines(path, lines):
     print(f"\nwritten: {out}")
 
 
+def write_json(path, record):
+    """Writes a report's figures (a JSON-able record) to path, beside its Markdown; prints where."""
+    import json
+    import pathlib
+    out = pathlib.Path(path)
+    out.write_text(json.dumps(record, indent=1) + "\n")
+    print(f"written: {out}")
+
+
 def machine():
     """One line describing the machine, for benchmark reports."""
     cpu = platform.processor() or "unknown cpu"

@@ -260,11 +260,11 @@ def speed_record(rpm, config, t, rows):
 
 
 def run(args):
-    command = f"python -m harness bench-realtime {' '.join(args.argv)}"
+    command, machine = f"python -m harness bench-realtime {' '.join(args.argv)}", runs.machine()
     host = host_speed()
     lines = ["# Real-time benchmark: the link model through ChainDrive.fmu", "",
-             f"Machine: {runs.machine()}; command: {command}", "", host_line(*host), ""]
-    record = dict(machine=runs.machine(), command=command, replicas=args.replicas,
+             f"Machine: {machine}; command: {command}", "", host_line(*host), ""]
+    record = dict(machine=machine, command=command, replicas=args.replicas,
                   host=dict(cpuPerSimulatedSecond=host[0], cpuPerLinkStep=host[1]), speeds=[])
     print("\n".join(lines))
     for rpm in args.rpm:
@@ -291,7 +291,5 @@ def run(args):
         lines += section
         record["speeds"].append(speed_record(rpm, config, t, rows))
     runs.write_lines(args.out, lines)
-    json_out = pathlib.Path(args.out).with_suffix(".json")
-    json_out.write_text(json.dumps(record, indent=1) + "\n")
-    print(f"written: {json_out}")
+    runs.write_json(pathlib.Path(args.out).with_suffix(".json"), record)
     return 0

@@ -60,10 +60,11 @@ def share(row):
     return abs(row["difference"]) / row["tolerance"] if math.isfinite(row["difference"]) else math.inf
 
 
-def point(report, speed):
-    """A speed of a report as a point: its cost, its largest difference over its tolerance (and the
-    quantity), and its verdict: 'within scatter', 'met' (every tolerance, not every difference
-    within scatter), 'missed' or None (no accuracy table)."""
+def point(report, speed, source):
+    """A speed of a report (from the file source) as a point: its cost, its largest difference over
+    its tolerance (and the quantity), its verdict: 'within scatter', 'met' (every tolerance, not
+    every difference within scatter), 'missed' or None (no accuracy table), and the files its
+    accuracy and its RTF come from."""
     rows = speed["accuracy"]
     worst = max(rows, key=share, default=None)
     verdict = None
@@ -75,7 +76,8 @@ def point(report, speed):
                 worst=share(worst) if worst else None,
                 worstKey=worst["key"] if worst else None, verdict=verdict,
                 withinScatter=sum(r["withinScatter"] for r in rows), met=sum(r["meets"] for r in rows),
-                quantities=len(rows), hostCpuPerSimulatedSecond=report["host"]["cpuPerSimulatedSecond"])
+                quantities=len(rows), hostCpuPerSimulatedSecond=report["host"]["cpuPerSimulatedSecond"],
+                accuracyFrom=source, rtfFrom=source)
 
 
 def same_run(speed, p):
@@ -84,15 +86,15 @@ def same_run(speed, p):
                                                                                          rel_tol=1e-9)
 
 
-def with_timing(p, source, timings):
+def with_timing(p, timings):
     """The point with its RTF, p99 / median and host speed from the first timing report of the same
     speed, method and step (and that report as its RTF's source), else as it was."""
     for path, report in timings:
         for s in report["speeds"]:
             if same_run(s, p):
                 return dict(p, rtf=model_rtf(s), p99OverMedian=s["p99OverMedian"],
-                            hostCpuPerSimulatedSecond=report["host"]["cpuPerSimulatedSecond"]), path.name
-    return p, source
+                            hostCpuPerSimulatedSecond=report["host"]["cpuPerSimulatedSecond"], rtfFrom=path.name)
+    return p
 
 
 def unmatched_timings(points, timings):
@@ -158,36 +160,31 @@ def chart(path, points):
     plt.close(fig)
 
 
-def table(points, sources, timing_sources):
+def table(points):
     lines = ["| speed | method | step | RTF | target | p99 / median | largest difference / tolerance | "
              "tolerances met | within scatter | host speed [CPU s/s] | accuracy from | RTF from |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for p, source, timing in sorted(zip(points, sources, timing_sources), key=lambda ps: (ps[0]["rpm"], ps[0]["rtf"])):
+    for p in sorted(points, key=lambda p: (p["rpm"], p["rtf"])):
         worst = ("no reference" if p["worst"] is None else f"{p['worst']:.2f} ({p['worstKey']})"
                  if math.isfinite(p["worst"]) else f"not a number ({p['worstKey']})")
         target = f"{p['rtfTarget']:g}" if p["rtfTarget"] else ""
         lines.append(f"| {p['rpm']:g} rpm | {p['method']} | {p['step'] * 1e6:.4g} us | {p['rtf']:.3g} | {target} | "
                      f"{p['p99OverMedian']:.2f} | {worst} | {p['met']}/{p['quantities']} | "
-                     f"{p['withinScatter']}/{p['quantities']} | {p['hostCpuPerSimulatedSecond']:.3g} | {source} | "
-                     f"{timing} |")
+                     f"{p['withinScatter']}/{p['quantities']} | {p['hostCpuPerSimulatedSecond']:.3g} | "
+                     f"{p['accuracyFrom']} | {p['rtfFrom']} |")
     return lines
 
 
 def run(args):
-    points, sources, timing_sources = [], [], []
-    for path, report in args.loaded:
-        for speed in report["speeds"]:
-            p, timing = with_timing(point(report, speed), path.name, args.timings)
-            points.append(p)
-            sources.append(path.name)
-            timing_sources.append(timing)
+    points = [with_timing(point(report, speed, path.name), args.timings)
+              for path, report in args.loaded for speed in report["speeds"]]
     if unmatched := unmatched_timings(points, args.timings):
         raise UserError(f"--timing: no report gives a point of {'; '.join(unmatched[:3])} (the same speed, method "
                         f"and step)")
     out = pathlib.Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     chart(out, points)
-    rows = table(points, sources, timing_sources)
+    rows = table(points)
     print("\n".join(rows))
     runs.write_lines(out.with_suffix(".md"), ["# Work-precision of the real-time candidates", "",
                                               f"`python -m harness realtime-chart {' '.join(args.argv)}`", "",

@@ -29,7 +29,6 @@ rates, the links about to touch counted as free), so a target below it is out of
 routes without making the contact work itself cheaper: the report gives the factor that would need.
 Needs perf (Debian: linux-perf) and the kernel's permission to sample the process.
 """
-import json
 import pathlib
 import re
 import shutil
@@ -168,8 +167,6 @@ def run(args):
     lines += [line(f) for f in floors]
     print("\n".join(lines))
     runs.write_lines(args.out, lines)
-    json_out = pathlib.Path(args.out).with_suffix(".json")
-    json_out.write_text(json.dumps(dict(machine=runs.machine(), command=command, report=args.report,
-                                        speeds=floors), indent=1) + "\n")
-    print(f"written: {json_out}")
+    runs.write_json(pathlib.Path(args.out).with_suffix(".json"),
+                    dict(machine=runs.machine(), command=command, report=args.report, speeds=floors))
     return 0

@@ -26,7 +26,7 @@ def report(rpm, method, step, rtf, differences, zs):
 
 
 def point_of(r):
-    return realtime_chart.point(r, r["speeds"][0])
+    return realtime_chart.point(r, r["speeds"][0], "report.json")
 
 
 def test_a_point_is_its_largest_difference_over_its_tolerance_and_its_verdict():
