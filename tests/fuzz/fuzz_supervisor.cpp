@@ -210,7 +210,38 @@ class Supervisor {
   std::vector<FuzzFailure> failures_;
 };
 
+namespace {
+
+void ignoreLogMessage(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...) {}
+
+// The span model's calibration is computed once per drive and source and then read from the
+// cache (span/calibration_cache.h): seconds in a release build, a minute or more under the
+// sanitizers on a slow host, all of it inside one fmi2ExitInitializationMode. A sequence that
+// picks the span fidelity with the cache cold looks hung to the watchdog, and a child killed
+// before it writes the cache leaves it cold for the next. So the default drive's calibration is
+// made here first, outside any watchdog; a sequence then pays for it only when it sets
+// parameters the calibration depends on. (Nothing is written where the cache is switched off or
+// not writable: the sequences then pay as before.)
+void warmSpanCalibration(const FuzzPaths& paths) {
+  fmi2CallbackFunctions callbacks{};
+  callbacks.logger = ignoreLogMessage;
+  const std::string location = "file://" + paths.resourceDir;
+  fmi2Component c = fmi2Instantiate("span calibration", fmi2CoSimulation, fmu::kGuid, location.c_str(), &callbacks,
+                                    fmi2False, fmi2False);
+  if (!c) return;
+  const fmi2ValueReference fidelity = fmu::kFidelity;
+  const fmi2String span = "span";
+  const bool initialized = fmi2SetString(c, &fidelity, 1, &span) == fmi2OK &&
+                           fmi2SetupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 1.0) == fmi2OK &&
+                           fmi2EnterInitializationMode(c) == fmi2OK && fmi2ExitInitializationMode(c) == fmi2OK;
+  if (initialized) fmi2Terminate(c);
+  fmi2FreeInstance(c);
+}
+
+}  // namespace
+
 std::vector<FuzzFailure> Supervisor::run() {
+  warmSpanCalibration(paths_);
   std::uint64_t next = 0;
   while (next < o_.count && failures_.size() < o_.maxFailures)
     next = runBatch(next, std::min(o_.count, next + std::max<std::uint64_t>(o_.batch, 1)));
