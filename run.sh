@@ -11,6 +11,9 @@
 #                   python -m harness sweep; set-up first, as the other two)
 #   ./run.sh package the FMUs for download: dist/ChainDrive.fmu and dist/CVTChain.fmu with linux64
 #                   (glibc 2.17) and win64 binaries and their sources (python -m harness package)
+#   ./run.sh export --drive FILE [--out DIR]  the FMU of a drive: DIR/<name>.fmu, its interface
+#                   generated from the drive (python -m harness export), with the packaged binaries
+#                   where ./run.sh package made them, else the native build's
 #
 # ./run.sh test packages the FMUs too and runs them on both platforms (the Windows binary under
 # wine) and from their sources.
@@ -163,6 +166,11 @@ case "${1:-}" in
     setup
     "$VENV/bin/python" -m harness sweep "$@"
     ;;
+  export)
+    shift
+    setup
+    "$VENV/bin/python" -m harness export "$@"
+    ;;
   package)
     shift
     python_ready test,package || { install_system_packages; setup_python test,package; }
@@ -186,7 +194,7 @@ case "${1:-}" in
     fi
     ;;
   *)
-    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test | ./run.sh sweep [options of python -m harness sweep] | ./run.sh package [options of python -m harness package]" >&2
+    echo "usage: ./run.sh main [options of python -m harness run] | ./run.sh test | ./run.sh sweep [options of python -m harness sweep] | ./run.sh package [options of python -m harness package] | ./run.sh export --drive FILE [--out DIR]" >&2
     exit 2
     ;;
 esac

@@ -27,9 +27,14 @@ template <class A>
 concept ModelAdapter =
     // a SimulationAdapter over itself (what the protocol calls), made with its instance's Host
     std::derived_from<A, SimulationAdapter<A, A::kInputs>> && std::constructible_from<A, Host&> &&
-    requires(A& a, const A& c, unsigned vr, double& real, int& integer, const Variable& v) {
+    requires(A& a, const A& c, unsigned vr, double& real, int& integer, const Variable& v, const char* guid) {
       // what the FMU is
-      { A::kDescription } -> std::same_as<const ModelDescription&>;  // its <adapter>_variables.h: identifier, GUID, variables
+      { c.findVariable(vr) } -> std::same_as<const Variable*>;  // the variable of a value reference; nullptr if none
+      { c.modelIdentifier() } -> std::convertible_to<const char*>;  // its model description's
+      { a.instantiated(guid) } -> std::same_as<bool>;  // after construction: the GUID checked (and the
+                                                       // interface loaded); false: the problem logged
+      { A::kSolverTime } -> std::convertible_to<unsigned>;   // the value references the protocol
+      { A::kSolverSteps } -> std::convertible_to<unsigned>;  // answers itself
       { A::kModelWord } -> std::convertible_to<const char*>;  // what its descriptions describe, for messages
       { A::kStateMagic } -> std::same_as<const char (&)[8]>;  // the first bytes of its serialized FMU states
       // the steps of SimulationAdapter::prepare()

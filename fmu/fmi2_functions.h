@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstring>
+#include <memory>
 #include <new>
 #include <string>
 
@@ -73,7 +74,7 @@ fmi2Status unsupported(fmi2Component c, const char* fn) {
   Instance* in = cast(c);
   if (in)
     in->log(fmi2Error, "logStatusError", "%s is not supported by %s (co-simulation only)", fn,
-            ExportedAdapter::kDescription.modelIdentifier);
+            in->model().modelIdentifier());
   return fmi2Error;
 }
 
@@ -103,14 +104,12 @@ FMI2_Export fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuT
   };
   try {
     if (!instanceName || !*instanceName) return fail("instanceName must be a non-empty string");
-    if (fmuType != fmi2CoSimulation) {
-      const std::string coSimulationOnly = std::string(ExportedAdapter::kDescription.modelIdentifier) +
-                                           " supports co-simulation only (fmuType must be fmi2CoSimulation)";
-      return fail(coSimulationOnly.c_str());
-    }
-    if (!fmuGUID || std::strcmp(fmuGUID, ExportedAdapter::kDescription.guid) != 0)
-      return fail("the GUID does not match this binary's modelDescription.xml (wrong or mixed-up FMU files)");
-    return new Instance(instanceName, functions, fmuResourceLocation, loggingOn != fmi2False);
+    if (fmuType != fmi2CoSimulation) return fail("this FMU supports co-simulation only (fmuType must be fmi2CoSimulation)");
+    // the model adapter checks the GUID against its model description (ChainDrive: the interface
+    // in its resources, checked against the drive there) and logs what does not fit
+    auto instance = std::make_unique<Instance>(instanceName, functions, fmuResourceLocation, loggingOn != fmi2False);
+    if (!instance->model().instantiated(fmuGUID)) return nullptr;
+    return instance.release();
   } catch (const std::exception& e) {
     return fail(e.what());
   } catch (...) {

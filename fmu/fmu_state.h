@@ -49,7 +49,7 @@ fmi2Status deserialize(Host& host, const char* data, std::size_t size, FmuState<
   const std::size_t head = sizeof magic + sizeof(std::uint64_t) + kProtocolFieldBytes + Model::kSnapshotFieldBytes;
   if (!data || size < head || std::memcmp(data, magic, sizeof magic) != 0) {
     host.log(fmi2Error, "logStatusError", "fmi2DeSerializeFMUstate: %zu bytes are not a serialized %s state", size,
-             Model::kDescription.modelIdentifier);
+             Model::kModelWord);
     return fmi2Error;
   }
   ByteReader in(data + sizeof magic);

@@ -90,7 +90,7 @@ class SimulationAdapter {
       }
       // outputs: of the current state, prepared on demand in initialization mode
       if (!outputsReady()) return notAvailable("fmi2GetReal", *var);
-      if (vr[i] == Derived::kDescription.solverTime) v[i] = sim_->time();
+      if (vr[i] == Derived::kSolverTime) v[i] = sim_->time();
       else if (!self().readRealOutput(vr[i], v[i])) return badVr("fmi2GetReal", vr[i], "is not readable");
     }
     return fmi2OK;
@@ -106,7 +106,7 @@ class SimulationAdapter {
       }
       if (!outputsReady()) return notAvailable("fmi2GetInteger", *var);
       int value = 0;
-      if (vr[i] == Derived::kDescription.solverSteps) value = static_cast<int>(steps_);
+      if (vr[i] == Derived::kSolverSteps) value = static_cast<int>(steps_);
       else if (!self().readIntegerOutput(vr[i], value)) return badVr("fmi2GetInteger", vr[i], "is not readable");
       v[i] = value;
     }
@@ -309,7 +309,15 @@ class SimulationAdapter {
 
  protected:
   Derived& self() { return static_cast<Derived&>(*this); }
-  static const Variable* variable(unsigned vr) { return Derived::kDescription.variable(vr); }
+  const Variable* variable(unsigned vr) const { return static_cast<const Derived&>(*this).findVariable(vr); }
+
+  /// Whether the importer's GUID is `own` (logged if not: the FMU's files are mixed up).
+  bool guidMatches(const char* given, const char* own) {
+    if (given && std::string(given) == own) return true;
+    host_.log(fmi2Error, "logStatusError", "fmi2Instantiate: the GUID %s does not match this FMU's %s (wrong or "
+              "mixed-up FMU files)", given ? given : "(NULL)", own);
+    return false;
+  }
 
   /// The description in `file` (a parameter); empty: `resource` in the FMU's resources folder, or
   /// the one built into the binary (with a warning) when the importer gave none. Logged.

@@ -1,5 +1,6 @@
-// What every FMU's variable table is made of (each FMU's <adapter>_variables.h lists its variables, which
-// mirror its model description), and what the protocol reads of it.
+// What every FMU's variable table is made of: each model adapter answers the variable of a value
+// reference from its table (CVTChain: cvt_variables.h, mirroring its model description; ChainDrive:
+// the table generated from the drive, src/interface/).
 #pragma once
 
 #include <cstddef>
@@ -15,15 +16,6 @@ struct Variable {
   Type type;
   Causality causality;
   const char* start;  // start value as written in the model description ("" for outputs)
-};
-
-/// What the protocol reads of an FMU's modelDescription.xml, from the <adapter>_variables.h of its model
-/// adapter (every model adapter names its own: adapter_contract.h).
-struct ModelDescription {
-  const char* modelIdentifier;
-  const char* guid;                          // the GUID fmi2Instantiate checks
-  const Variable* (*variable)(unsigned vr);  // the variable of a value reference; nullptr if none
-  unsigned solverTime, solverSteps;          // the outputs the protocol answers itself
 };
 
 /// The variable of value reference vr in a table; nullptr if none.

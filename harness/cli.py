@@ -20,6 +20,7 @@
     python -m harness picture        picture of a drive (harness/plots/drive_picture.py)
     python -m harness rig            the hydraulic tensioner's force-displacement loops on the bench (harness/rig/rig.py)
     python -m harness package        the FMUs for download: linux64, win64, sources (harness/package/package.py)
+    python -m harness export         the FMU of a drive, its interface generated from it (harness/fmu/export.py)
 
 `python -m harness COMMAND --help` shows a command's options. Each command's module gives its
 options (add_arguments(parser)), optionally checks them (check(parser, args), which reports misuse
@@ -75,6 +76,8 @@ COMMANDS = {
             "20-200 Hz"),
     "package": ("harness.package.package", "the FMUs for download (dist/): linux64 (glibc 2.17) and win64 binaries "
                 "and sources"),
+    "export": ("harness.fmu.export", "the FMU of a drive (dist/<name>.fmu): its interface generated from the drive, "
+               "every sprocket, guide and span by name, from the binaries already built"),
 }
 
 

@@ -53,7 +53,7 @@ import numpy as np
 from . import checks, cycle_stats, defaults, paths
 from .drive.description import clearance_or_rigid, drive_json, is_hydraulic, meshing_order, oil_temperature_range
 from .errors import UserError
-from .fmu import fmu
+from .fmu import export, fmu
 from .plots import drive_picture, plots
 from .tables import tables
 
@@ -155,9 +155,8 @@ def parameters_of(config):
     """The FMU's parameters of a run."""
     p = {"fidelity": config.fidelity, "solver.method": config.method, "solver.step": config.solver_step,
          "solver.tolerance": config.rtol, "solver.newmarkGamma": config.newmark_gamma}
-    if config.drive:
-        p["driveFile"] = str(pathlib.Path(config.drive).resolve())
-    p["tensioner.oilTemperature"] = config.oil_temperature  # (the spring-damper law ignores it)
+    if is_hydraulic(drive_json(config.drive)):  # (a drive with another tensioner has no such parameter)
+        p["tensioner.oilTemperature"] = config.oil_temperature
     return p
 
 
@@ -176,9 +175,9 @@ def table_inputs(torque, speed, supply_pressure=SUPPLY_PRESSURE, speed_factor=1.
 
 def run_closed(config, duration, inputs, progress=True, fmu_file=None):
     """Master loop: inputs (table_inputs) looked up at the FMU's own angles before every step.
-    fmu_file: the FMU (a file or an unpacked folder; default the build's). Returns (record, CPU
-    seconds spent inside each fmi2DoStep)."""
-    s = fmu.Slave("chaindrive", fmu=fmu_file, parameters=parameters_of(config))
+    fmu_file: the FMU (a file or an unpacked folder; default the drive's: export.fmu_for). Returns
+    (record, CPU seconds spent inside each fmi2DoStep)."""
+    s = fmu.Slave("chaindrive", fmu=fmu_file or export.fmu_for(config.drive), parameters=parameters_of(config))
     step = config.step
     n = int(round(duration / step))
     u0 = inputs(0.0, 0.0, 0.0, 0.0)
@@ -223,7 +222,7 @@ def run_open(config, duration, torque, speed):
     arr["crankshaft.w"] *= 1.0 + config.speed_perturbation
     arr[supply] = config.supply_pressure
     prog = Progress(duration, "open loop")
-    res = simulate_fmu(str(fmu.fmu_path()), stop_time=duration, output_interval=config.step, input=arr,
+    res = simulate_fmu(str(export.fmu_for(config.drive)), stop_time=duration, output_interval=config.step, input=arr,
                        start_values=parameters_of(config), step_finished=lambda t, rec: prog.update(t))
     prog.done()
     out = {n: np.asarray(res[n], dtype=float) for n in res.dtype.names}

@@ -3,74 +3,54 @@
 #include <cmath>
 
 #include "description/drive_description.h"
+#include "interface/drive_interface.h"
 
 namespace chaindrive::fmu {
 
-namespace {
+// ---- the interface ----
 
-// What a Real output is read from: the solver outputs at the current state and the rotors' roles.
-struct OutputView {
-  const Outputs& out;
-  const RotorRoles& roles;
-};
-
-// A rotor's quantity; 0 when the drive has no rotor of that role.
-double rotor(int r, const std::vector<double>& a) { return r >= 0 ? a[r] : 0.0; }
-
-struct RealOutput {
-  unsigned vr;
-  double (*read)(const OutputView& s);
-};
-
-// clang-format off
-constexpr RealOutput kRealOutputs[] = {
-  {kCrankshaftPhi,            [](const OutputView& s) { return rotor(s.roles.crank, s.out.rotorAngle); }},
-  {kCrankshaftTau,            [](const OutputView& s) { return s.out.crankTorque; }},
-  {kCamshaftIntakePhi,        [](const OutputView& s) { return rotor(s.roles.intake, s.out.rotorAngle); }},
-  {kCamshaftIntakeW,          [](const OutputView& s) { return rotor(s.roles.intake, s.out.rotorRate); }},
-  {kCamshaftExhaustPhi,       [](const OutputView& s) { return rotor(s.roles.exhaust, s.out.rotorAngle); }},
-  {kCamshaftExhaustW,         [](const OutputView& s) { return rotor(s.roles.exhaust, s.out.rotorRate); }},
-  {kTensionGuidePhi,          [](const OutputView& s) { return rotor(s.roles.tensionGuide, s.out.rotorAngle); }},
-  {kTensionGuideW,            [](const OutputView& s) { return rotor(s.roles.tensionGuide, s.out.rotorRate); }},
-  {kTensionerF,               [](const OutputView& s) { return s.out.tensionerForce; }},
-  {kTensionerS,               [](const OutputView& s) { return s.out.tensionerStroke; }},
-  {kTensionerV,               [](const OutputView& s) { return s.out.tensionerRate; }},
-  {kChainFtight,              [](const OutputView& s) { return s.out.tightSpanForce; }},
-  {kChainFslack,              [](const OutputView& s) { return s.out.slackSpanForce; }},
-  {kLinkF,                    [](const OutputView& s) { return s.out.linkTension; }},
-  {kLinkFn,                   [](const OutputView& s) { return s.out.linkNormalForce; }},
-  {kLinkFnSprocket,           [](const OutputView& s) { return s.out.linkSprocketForce; }},
-  {kLinkFnGuide,              [](const OutputView& s) { return s.out.linkGuideForce; }},
-  {kLinkX,                    [](const OutputView& s) { return s.out.linkPosition.x; }},
-  {kLinkY,                    [](const OutputView& s) { return s.out.linkPosition.y; }},
-  {kEnergyKinetic,            [](const OutputView& s) { return s.out.energy.kinetic; }},
-  {kEnergyElastic,            [](const OutputView& s) { return s.out.energy.elastic; }},
-  {kEnergyDissipated,         [](const OutputView& s) { return s.out.energy.dissipated; }},
-  {kEnergyInput,              [](const OutputView& s) { return s.out.energy.inputWork; }},
-  {kChainMaxJointDeformation, [](const OutputView& s) { return s.out.maxJointDeformation; }},
-  {kTensionerChamberPressure, [](const OutputView& s) { return s.out.chamberPressure; }},
-  {kTensionerCheckValveFlow,  [](const OutputView& s) { return s.out.tensionerFlows.check; }},
-  {kTensionerLeakFlow,        [](const OutputView& s) { return s.out.tensionerFlows.leak; }},
-};
-// clang-format on
-
-const RealOutput* findRealOutput(unsigned vr) {
-  for (const RealOutput& o : kRealOutputs)
-    if (o.vr == vr) return &o;
-  return nullptr;
+bool ChainDriveModel::instantiated(const char* guid) {
+  const std::string problem = interface_.load(host_.resourceDir(), guid);
+  if (problem.empty()) return true;
+  host_.log(fmi2Error, "logStatusError", "fmi2Instantiate: %s", problem.c_str());
+  return false;
 }
 
-}  // namespace
+const InterfaceVariable* ChainDriveModel::tableEntry(unsigned vr) const {
+  const int i = interface_.at(vr);
+  return i >= 0 ? &interface_.table().variables[i] : nullptr;
+}
+
+Binding ChainDriveModel::bindingOf(unsigned vr) const {
+  const InterfaceVariable* v = tableEntry(vr);
+  return v ? v->binding : Binding::SolverTime;
+}
 
 // ---- preparation ----
 
-// The drive from the parameters (the file, the tensioner overrides) and the roles of its rotors.
+// The drive from the parameters (the file, the tensioner overrides) and its rotors by the
+// interface's element names.
 bool ChainDriveModel::buildModel() {
-  DriveDescription desc =
-      describedBy(params_.driveFile, "default_drive.json", "drive", loadDriveDescription, defaultDriveDescription);
+  DriveDescription desc = parameterDrive();
   if (!applyTensionerOverrides(desc)) return false;
   model_ = std::make_shared<const Model>(assemble(desc));
-  return assignRoles(*model_) && choicesCombine(simulationOptions());
+  return resolveElements(*model_) && choicesCombine(simulationOptions());
+}
+
+// The FMU's own drive, or the file of the parameter driveFile if its interface is this FMU's
+// (a drive with the same elements and names: other masses, stiffnesses or geometry).
+DriveDescription ChainDriveModel::parameterDrive() {
+  if (params_.driveFile.empty()) {
+    host_.log(fmi2OK, "logEvents", "drive: %s", interface_.drivePath().c_str());
+    return interface_.drive();
+  }
+  DriveDescription desc = loadDriveDescription(params_.driveFile);
+  const std::string mismatch = interfaceMismatch(interface_.table(), desc);
+  if (!mismatch.empty())
+    throw DescriptionError({"driveFile: '" + params_.driveFile + "' has another interface than this FMU's drive (" +
+                            mismatch + "); export an FMU of that drive (python -m harness export --drive FILE)"});
+  host_.log(fmi2OK, "logEvents", "drive: %s", params_.driveFile.c_str());
+  return desc;
 }
 
 void ChainDriveModel::resetSettings() {
@@ -116,14 +96,15 @@ void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
 // The crankshaft speed turns the drive in its running direction only: a negative speed (or one
 // far beyond any engine's) is refused when set, before it can blow the run up.
 bool ChainDriveModel::inputAcceptable(const Variable& v, double value) {
-  if (v.vr == kTensionerSupplyPressure) {
+  const Binding binding = bindingOf(v.vr);
+  if (binding == Binding::SupplyPressure) {
     // gauge: no absolute pressure below zero; above, far beyond any engine's oil gallery
     if (value >= -kAtmosphere && value <= kMaxSupplyPressure) return true;
     host_.log(fmi2Error, "logStatusError", "fmi2SetReal: %s (gauge; the absolute pressure cannot be negative)",
               outsideRange(v.name, value, -kAtmosphere, kMaxSupplyPressure, "Pa").c_str());
     return false;
   }
-  if (v.vr != kCrankshaftW || (value >= 0.0 && value <= kMaxCrankSpeed)) return true;
+  if (binding != Binding::CrankSpeed || (value >= 0.0 && value <= kMaxCrankSpeed)) return true;
   host_.log(fmi2Error, "logStatusError", "fmi2SetReal: %s (the crankshaft turns in the running direction only)",
             outsideRange(v.name, value, 0.0, kMaxCrankSpeed, "rad/s").c_str());
   return false;
@@ -165,26 +146,27 @@ bool ChainDriveModel::applyOilTemperature(DriveDescription& desc) {
   return true;
 }
 
-// The rotors the FMU's inputs and outputs refer to, and the monitored link's range.
-bool ChainDriveModel::assignRoles(const Model& m) {
+// The model's rotor of every element's variable, the load inputs' rotors, and the monitored
+// link's range.
+bool ChainDriveModel::resolveElements(const Model& m) {
   if (params_.linkIndex < -1 || params_.linkIndex >= m.chain.links) {
     host_.log(fmi2Error, "logStatusError", "link.index = %d is outside 0..%d (or -1: as in the drive)",
               params_.linkIndex, m.chain.links - 1);
     return false;
   }
-  roles_ = RotorRoles{};
-  roles_.crank = m.drivenRotor;
-  if (roles_.crank < 0) {
-    host_.log(fmi2Error, "logStatusError", "the drive has no sprocket with motion 'prescribed' to follow crankshaft.w");
-    return false;
+  const std::vector<InterfaceVariable>& vars = interface_.table().variables;
+  rotorOf_.assign(vars.size(), -1);
+  loads_.clear();
+  for (std::size_t i = 0; i < vars.size(); ++i) {
+    if (vars[i].element.empty()) continue;
+    rotorOf_[i] = m.rotorIndex(vars[i].element);
+    if (rotorOf_[i] < 0) {  // (the interface was generated from this drive: not reached)
+      host_.log(fmi2Error, "logStatusError", "%s: the drive has no rotor '%s'", vars[i].name.c_str(),
+                vars[i].element.c_str());
+      return false;
+    }
+    if (vars[i].binding == Binding::LoadTorque) loads_.emplace_back(kInLoads + vars[i].index, rotorOf_[i]);
   }
-  roles_.intake = m.rotorIndex("camshaftIntake");
-  roles_.exhaust = m.rotorIndex("camshaftExhaust");
-  roles_.tensionGuide = m.tensioner.present ? m.tensioner.rotor : -1;
-  if (roles_.intake < 0 || roles_.exhaust < 0)
-    host_.log(fmi2Warning, "logStatusWarning",
-              "the drive has no sprocket named camshaftIntake and/or camshaftExhaust: their inputs have no effect and "
-              "their outputs are zero");
   return true;
 }
 
@@ -224,50 +206,79 @@ void ChainDriveModel::applyInputs() {
   if (!held_) return;
   InputValues& v = held_->values;
   v.crankSpeed = in_[kInCrankSpeed];
-  if (roles_.intake >= 0) v.loadTorque[roles_.intake] = in_[kInTauIntake];
-  if (roles_.exhaust >= 0) v.loadTorque[roles_.exhaust] = in_[kInTauExhaust];
+  for (const auto& [slot, rotor] : loads_) v.loadTorque[rotor] = in_[slot];
   v.supplyPressure = in_[kInSupplyPressure];
 }
 
 // ---- values by value reference ----
 
 double* ChainDriveModel::realSetting(unsigned vr) {
-  switch (vr) {
-    case kCrankshaftW: return &in_[kInCrankSpeed];
-    case kCamshaftIntakeTau: return &in_[kInTauIntake];
-    case kCamshaftExhaustTau: return &in_[kInTauExhaust];
-    case kTensionerSupplyPressure: return &in_[kInSupplyPressure];
-    case kTensionerOilTemperature: return &params_.oilTemperature;
-    case kSolverTolerance: return &params_.tolerance;
-    case kSolverStep: return &params_.step;
-    case kSolverNewmarkGamma: return &params_.newmarkGamma;
-    case kTensionerPreload: return &params_.tensionerPreload;
-    case kTensionerStiffness: return &params_.tensionerStiffness;
-    case kTensionerDamping: return &params_.tensionerDamping;
-    case kTensionerDampingExtension: return &params_.tensionerDampingExtension;
+  const InterfaceVariable* v = tableEntry(vr);
+  if (!v) return nullptr;
+  switch (v->binding) {
+    case Binding::CrankSpeed: return &in_[kInCrankSpeed];
+    case Binding::SupplyPressure: return &in_[kInSupplyPressure];
+    case Binding::LoadTorque: return &in_[kInLoads + v->index];
+    case Binding::OilTemperature: return &params_.oilTemperature;
+    case Binding::SolverTolerance: return &params_.tolerance;
+    case Binding::SolverStep: return &params_.step;
+    case Binding::NewmarkGamma: return &params_.newmarkGamma;
+    case Binding::TensionerPreload: return &params_.tensionerPreload;
+    case Binding::TensionerStiffness: return &params_.tensionerStiffness;
+    case Binding::TensionerDamping: return &params_.tensionerDamping;
+    case Binding::TensionerDampingExtension: return &params_.tensionerDampingExtension;
     default: return nullptr;
   }
 }
 
 std::string* ChainDriveModel::stringParameter(unsigned vr) {
-  switch (vr) {
-    case kDriveFile: return &params_.driveFile;
-    case kSolverMethod: return &params_.method;
-    case kContactMethod: return &params_.contactMethod;
-    case kChainJointModel: return &params_.jointModel;
-    case kFidelity: return &params_.fidelity;
+  switch (bindingOf(vr)) {
+    case Binding::DriveFile: return &params_.driveFile;
+    case Binding::SolverMethod: return &params_.method;
+    case Binding::ContactMethod: return &params_.contactMethod;
+    case Binding::JointModel: return &params_.jointModel;
+    case Binding::Fidelity: return &params_.fidelity;
     default: return nullptr;
   }
 }
 
 bool ChainDriveModel::readRealOutput(unsigned vr, double& value) const {
-  const RealOutput* output = findRealOutput(vr);
-  if (output) value = output->read(OutputView{out_, roles_});
-  return output != nullptr;
+  const int i = interface_.at(vr);
+  if (i < 0) return false;
+  const InterfaceVariable& v = interface_.table().variables[i];
+  const Outputs& o = out_;
+  switch (v.binding) {
+    case Binding::RotorAngle: value = o.rotorAngle[rotorOf_[i]]; break;
+    case Binding::RotorRate: value = o.rotorRate[rotorOf_[i]]; break;
+    case Binding::RotorChainTorque: value = o.rotorTorque[rotorOf_[i]]; break;
+    case Binding::CrankTorque: value = o.crankTorque; break;
+    case Binding::SpanForce: value = o.spanForce[v.index]; break;
+    case Binding::TightSpanForce: value = o.tightSpanForce; break;
+    case Binding::SlackSpanForce: value = o.slackSpanForce; break;
+    case Binding::TensionerForce: value = o.tensionerForce; break;
+    case Binding::TensionerStroke: value = o.tensionerStroke; break;
+    case Binding::TensionerRate: value = o.tensionerRate; break;
+    case Binding::ChamberPressure: value = o.chamberPressure; break;
+    case Binding::CheckValveFlow: value = o.tensionerFlows.check; break;
+    case Binding::LeakFlow: value = o.tensionerFlows.leak; break;
+    case Binding::LinkTension: value = o.linkTension; break;
+    case Binding::LinkNormalForce: value = o.linkNormalForce; break;
+    case Binding::LinkSprocketForce: value = o.linkSprocketForce; break;
+    case Binding::LinkGuideForce: value = o.linkGuideForce; break;
+    case Binding::LinkX: value = o.linkPosition.x; break;
+    case Binding::LinkY: value = o.linkPosition.y; break;
+    case Binding::EnergyKinetic: value = o.energy.kinetic; break;
+    case Binding::EnergyElastic: value = o.energy.elastic; break;
+    case Binding::EnergyDissipated: value = o.energy.dissipated; break;
+    case Binding::EnergyInput: value = o.energy.inputWork; break;
+    case Binding::MaxJointDeformation: value = o.maxJointDeformation; break;
+    default: return false;
+  }
+  return true;
 }
 
 bool ChainDriveModel::readIntegerOutput(unsigned vr, int& value) const {
-  if (vr != kContacts) return false;
+  if (bindingOf(vr) != Binding::Contacts) return false;
   value = out_.contacts;
   return true;
 }

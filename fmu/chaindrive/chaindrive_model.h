@@ -1,42 +1,44 @@
-// The model adapter of ChainDrive.fmu (Reference-FMUs' model.c): the parameters and their
-// validation, the preparation of the drive and its start state, the inputs and the outputs by
-// value reference; the values' checks, the communication step and the FMU state's solver part
-// are SimulationAdapter's (simulation_adapter.h). Its public members below the constructor are
-// the hooks of the ModelAdapter concept (adapter_contract.h). Adding an output touches
-// modelDescription.xml, chaindrive_variables.h and the output table in chaindrive_model.cpp only.
+// The model adapter of a drive's FMU (Reference-FMUs' model.c): the variables of its drive's
+// interface (chaindrive_interface.h, loaded from the FMU's resources at instantiation), the
+// parameters and their validation, the preparation of the drive and its start state, the inputs
+// and the outputs by their bindings; the values' checks, the communication step and the FMU
+// state's solver part are SimulationAdapter's (simulation_adapter.h). Its public members below the
+// constructor are the hooks of the ModelAdapter concept (adapter_contract.h). A new output is a
+// binding (src/interface/drive_interface.h) and its line in readRealOutput.
 #pragma once
 
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "chaindrive_interface.h"
 #include "run/defaults.h"
 #include "simulation_adapter.h"
-#include "chaindrive_variables.h"
 
 namespace chaindrive::fmu {
 
-/// The rotors the FMU's inputs and outputs refer to (-1: the drive has none of that role).
-struct RotorRoles {
-  int crank = -1, intake = -1, exhaust = -1, tensionGuide = -1;
-};
-
-/// The Real inputs, in the order of SimulationAdapter's input array.
-enum ChainDriveInput { kInCrankSpeed = 0, kInTauIntake = 1, kInTauExhaust = 2, kInSupplyPressure = 3, kChainDriveInputs = 4 };
+/// The Real inputs, in the order of SimulationAdapter's input array: the crankshaft speed, the
+/// oil supply pressure, then a load torque per sprocket of the description (by its index).
+enum ChainDriveInput { kInCrankSpeed = 0, kInSupplyPressure = 1, kInLoads = 2,
+                       kChainDriveInputs = kInLoads + kMaxSprockets };
 
 class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInputs> {
  public:
   explicit ChainDriveModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
 
   // ---- the hooks (adapter_contract.h) ----
-  static constexpr ModelDescription kDescription = {kModelIdentifier, kGuid, findVariable, kSolverTime, kSolverSteps};
+  static constexpr unsigned kSolverTime = chaindrive::kVrSolverTime, kSolverSteps = chaindrive::kVrSolverSteps;
   static constexpr const char* kModelWord = "drive";  // (what a state must have been taken of)
-  // '4': a hydraulic chamber's state is its oil content ('3': its pressure; the link states laid
-  // out component by component since '3', src/assembly/model.h)
-  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '4'};
+  // '5': the inputs of every sprocket ('4': a hydraulic chamber's state is its oil content; the
+  // link states laid out component by component since '3', src/assembly/model.h)
+  static constexpr char kStateMagic[8] = {'C', 'H', 'D', 'R', 'V', 'S', 'T', '5'};
+  const Variable* findVariable(unsigned vr) const { return interface_.find(vr); }
+  const char* modelIdentifier() const { return interface_.modelIdentifier().c_str(); }
+  bool instantiated(const char* guid);  // the interface from the resources folder
 
-  // the steps of prepare(): the drive, the roles of its rotors and the start state at host.time()
+  // the steps of prepare(): the drive, its rotors by the interface's names and the start state
   bool parametersValid();
   bool buildModel();
   void startSimulation();
@@ -46,14 +48,14 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   void evaluateOutputs() { out_ = sim_->outputs(); }
   double* realSetting(unsigned vr);  // a Real parameter or input; nullptr for others
   std::string* stringParameter(unsigned vr);
-  int* integerParameter(unsigned vr) { return vr == kLinkIndex ? &params_.linkIndex : nullptr; }
-  bool* booleanParameter(unsigned vr) { return vr == kSolverPreload ? &params_.preload : nullptr; }
+  int* integerParameter(unsigned vr) { return bindingOf(vr) == Binding::LinkIndex ? &params_.linkIndex : nullptr; }
+  bool* booleanParameter(unsigned vr) { return bindingOf(vr) == Binding::SolverPreload ? &params_.preload : nullptr; }
   bool readRealOutput(unsigned vr, double& value) const;
   bool readIntegerOutput(unsigned vr, int& value) const;
-  bool inputAcceptable(const Variable& v, double value);  // crankshaft.w in [0, kMaxCrankSpeed]; any finite torque
+  bool inputAcceptable(const Variable& v, double value);  // the crankshaft speed in [0, kMaxCrankSpeed]; any finite torque
 
  private:
-  static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 0.0, 0.0, 3e5};
+  static constexpr std::array<double, kChainDriveInputs> kInputStarts = {314.1592653589793, 3e5};  // (loads 0)
   // [rad/s] the largest crankshaft speed accepted (about 28600 rpm): above chaindrive-run's
   // 20000 rpm with its rotational vibration, far below a speed no engine turns at
   static constexpr double kMaxCrankSpeed = 3000.0;
@@ -88,15 +90,21 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   // the parts of parametersValid(), buildModel() and startSimulation()
   void parseChoices(std::vector<std::string>& problems);
   void checkRanges(std::vector<std::string>& problems) const;
+  DriveDescription parameterDrive();
   bool applyTensionerOverrides(DriveDescription& desc);
   bool applyOilTemperature(DriveDescription& desc);
-  bool assignRoles(const Model& m);
+  bool resolveElements(const Model& m);
 
   SimulationOptions simulationOptions() const;
+  /// The binding of a value reference's variable (SolverTime, a protocol output, for none).
+  Binding bindingOf(unsigned vr) const;
+  const InterfaceVariable* tableEntry(unsigned vr) const;
 
+  FmuInterface interface_;
   Parameters params_;
   Choices choices_;
-  RotorRoles roles_;
+  std::vector<int> rotorOf_;  // (the interface's variables) the model's rotor of an element's variable, -1 none
+  std::vector<std::pair<int, int>> loads_;  // (input slot, rotor) of every load-torque input
   Outputs out_;
 };
 

@@ -27,7 +27,10 @@ class CvtChainModel : public SimulationAdapter<CvtChainModel, kCvtInputs> {
   explicit CvtChainModel(Host& host) : SimulationAdapter(host) { in_ = kInputStarts; }
 
   // ---- the hooks (adapter_contract.h) ----
-  static constexpr ModelDescription kDescription = {kModelIdentifier, kGuid, findVariable, kSolverTime, kSolverSteps};
+  static constexpr unsigned kSolverTime = fmu::kSolverTime, kSolverSteps = fmu::kSolverSteps;
+  const Variable* findVariable(unsigned vr) const { return fmu::findVariable(vr); }
+  const char* modelIdentifier() const { return kModelIdentifier; }
+  bool instantiated(const char* guid) { return guidMatches(guid, kGuid); }
   static constexpr const char* kModelWord = "CVT";  // (what a state must have been taken of)
   static constexpr char kStateMagic[8] = {'C', 'V', 'T', 'C', 'H', 'S', 'T', '2'};  // '2': the ratio input
 

@@ -20,11 +20,14 @@ import time
 from fmpy.validation import validate_fmu
 
 from .. import paths
+from ..fmu import export
 from . import archive, binaries, compare, inspect, sources
 from .toolchain import TARGETS
 
-# id: (adapter folder fmu/<adapter>, model description, default description in resources/)
-FMUS = {"ChainDrive": ("chaindrive", "modelDescription/modelDescription.xml", "src/drives/default_drive.json"),
+# id: (adapter folder fmu/<adapter>, model description, default description in resources/);
+# ChainDrive's model description and resources are generated from the default drive, as every
+# drive's export is (harness/fmu/export.py)
+FMUS = {"ChainDrive": ("chaindrive", None, None),
         "CVTChain": ("cvt", "modelDescription/CVTChain.xml", "src/drives/default_cvt.json")}
 
 
@@ -65,15 +68,18 @@ def assemble(fmu_id, built, stage, out):
     if stage.exists():
         shutil.rmtree(stage)
     source_files = sources.write(stage / "sources", adapter)
-    (stage / "modelDescription.xml").write_text(
-        archive.with_source_files(paths.ROOT / model_description, source_files))
+    if model_description is None:
+        export.fmu_files(None, stage)
+    else:
+        shutil.copyfile(paths.ROOT / model_description, stage / "modelDescription.xml")
+        (stage / "resources").mkdir()
+        shutil.copyfile(paths.ROOT / resource, stage / "resources" / pathlib.Path(resource).name)
+    (stage / "modelDescription.xml").write_text(archive.with_source_files(stage / "modelDescription.xml", source_files))
     for platform, fmu_binaries in built.items():
         binary = fmu_binaries[fmu_id]
         target = stage / "binaries" / platform / f"{fmu_id}{TARGETS[platform].suffix}"
         target.parent.mkdir(parents=True)
         shutil.copyfile(binary, target)
-    (stage / "resources").mkdir()
-    shutil.copyfile(paths.ROOT / resource, stage / "resources" / pathlib.Path(resource).name)
     archive.stage_licenses(stage)
     fmu_file = out / f"{fmu_id}.fmu"
     archive.write_zip(stage, fmu_file)

@@ -500,16 +500,23 @@ void alignSprockets(Model& m, const std::vector<RouteElement>& route, std::vecto
   }
 }
 
-// A span probe at the middle of the span that leaves span[0] (towards span[1]).
-void placeSpanProbe(const Model& m, const std::vector<std::string>& route, const std::vector<std::string>& span,
-                    SpanProbe& pr) {
-  if (span.size() != 2) return;
+// A span probe at the middle of the free part of the span that leaves route element r.
+SpanProbe probeLeaving(const Model& m, std::size_t r) {
+  const PathSegment& sg = m.path.segments()[2 * r + 1];
+  SpanProbe pr;
+  pr.present = true;
+  pr.point = 0.5 * (sg.from + sg.to);
+  pr.direction = (1.0 / std::max(sg.length, 1e-12)) * (sg.to - sg.from);
+  return pr;
+}
+
+// The probes of every span, and the measured spans' (span[0] to span[1]) among them.
+void placeSpanProbes(Model& m, const DriveDescription& desc) {
+  const std::vector<std::string>& route = desc.chain.route;
   for (std::size_t r = 0; r < route.size(); ++r) {
-    if (route[r] != span[0]) continue;
-    const PathSegment& sg = m.path.segments()[2 * r + 1];
-    pr.present = true;
-    pr.point = 0.5 * (sg.from + sg.to);
-    pr.direction = (1.0 / std::max(sg.length, 1e-12)) * (sg.to - sg.from);
+    m.spanProbes.push_back(probeLeaving(m, r));
+    if (desc.measurement.tightSpan.size() == 2 && route[r] == desc.measurement.tightSpan[0]) m.tightSpan = m.spanProbes[r];
+    if (desc.measurement.slackSpan.size() == 2 && route[r] == desc.measurement.slackSpan[0]) m.slackSpan = m.spanProbes[r];
   }
 }
 
@@ -616,8 +623,7 @@ Model assemble(const DriveDescription& desc) {
   throwIfAny(problems);
 
   // what is measured, and where each quantity lives in the state vector
-  placeSpanProbe(m, desc.chain.route, desc.measurement.tightSpan, m.tightSpan);
-  placeSpanProbe(m, desc.chain.route, desc.measurement.slackSpan, m.slackSpan);
+  placeSpanProbes(m, desc);
   m.monitoredLink = desc.measurement.monitoredLink;
   layOutState(m);
   setRotorOutputSigns(m);

@@ -157,7 +157,8 @@ struct Model {
   double frictionRegularization = 0.05;
   int drivenRotor = -1;        // the rotor with prescribed motion, -1 if none
   std::vector<double> rotorOutputSign;  // (rotors) sprockets: running sense; guides: towards the chain
-  SpanProbe tightSpan, slackSpan;
+  std::vector<SpanProbe> spanProbes;   // (route elements) the span leaving each, at the middle of its free part
+  SpanProbe tightSpan, slackSpan;      // the measured spans' probes (description.measurement)
   int monitoredLink = 0;
 
   // State layout: the links' states component by component, one array over the links each

@@ -11,6 +11,8 @@
 #include "cli/arguments.h"
 #include "description/drive_description.h"
 #include "assembly/model.h"
+#include "description/fields.h"
+#include "interface/fmu_files.h"
 #include "run/defaults.h"
 #include "span/calibration_cache.h"
 
@@ -23,13 +25,19 @@ constexpr const char* kTool = "chaindrive-info";
 void usage() {
   std::puts(
       "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--calibrate] [--quiet] | --defaults\n"
+      "       chaindrive-info [--drive FILE] --interface | --fmu-files DIR\n"
       "  Assembles the drive (default: the embedded default drive), prints the closure and pose\n"
       "  report, and optionally writes the geometry for plotting.\n"
       "  --calibrate calibrates the drive's span model from its link model's statics (or takes the\n"
       "  calibration from the cache, src/span/calibration_cache.h) and prints what it identified, its\n"
       "  cost and its cache file.\n"
       "  --defaults prints the solver defaults of every entry point per scene and fidelity as JSON\n"
-      "  (the one table, src/run/defaults.h: method, step [s], tolerance).");
+      "  (the one table, src/run/defaults.h: method, step [s], tolerance).\n"
+      "  --interface prints the drive's FMU interface as JSON (src/interface/: every variable with\n"
+      "  its value reference, type, unit and description, the model identifier and GUID).\n"
+      "  --fmu-files writes the drive's FMU files but the binaries: DIR/modelDescription.xml and\n"
+      "  DIR/resources/ with the drive and its interface table (python -m harness export adds the\n"
+      "  binaries and sources).");
 }
 
 struct InfoArguments {
@@ -37,6 +45,8 @@ struct InfoArguments {
   bool quiet = false;
   bool defaults = false;  // print the defaults table instead
   bool calibrate = false;  // calibrate the span model and print the calibration
+  bool interface = false;  // print the FMU interface
+  std::string fmuFiles;    // write the FMU's model description and resources into this folder
 };
 
 // The options in any order (an option without its value is an unknown argument); -h/--help ends
@@ -50,6 +60,8 @@ InfoArguments parseArguments(cli::Arguments& args) {
     else if (a == "--quiet") r.quiet = true;
     else if (a == "--defaults") r.defaults = true;
     else if (a == "--calibrate") r.calibrate = true;
+    else if (a == "--interface") r.interface = true;
+    else if (a == "--fmu-files" && args.hasValue()) r.fmuFiles = args.value();
     else throw std::invalid_argument("unknown argument '" + a + "'");
   }
   return r;
@@ -194,11 +206,25 @@ void printDefaults() {
   std::printf("%s\n", table.dump(1).c_str());
 }
 
+// The FMU interface of the drive: printed, or written as the FMU's files (the drive's text as
+// given; the default drive's embedded text).
+int writeInterface(const InfoArguments& r) {
+  // (the description read first: its problems name the file)
+  const DriveInterface di = driveInterface(cli::loadDrive(r.drive));
+  if (!r.fmuFiles.empty())
+    writeFmuFiles(r.fmuFiles, r.drive.empty() ? std::string(defaultDriveJson()) : readDescriptionFile(r.drive));
+  if (r.interface) std::printf("%s\n", interfaceJson(di).dump(1).c_str());
+  else std::printf("%s: %s.fmu, GUID %s, %zu variables\n", r.fmuFiles.c_str(), di.modelIdentifier.c_str(),
+                   di.guid.c_str(), di.variables.size());
+  return 0;
+}
+
 int run(const InfoArguments& r) {
   if (r.defaults) {
     printDefaults();
     return 0;
   }
+  if (r.interface || !r.fmuFiles.empty()) return writeInterface(r);
   const DriveDescription desc = cli::loadDrive(r.drive);
   const Model m = assemble(desc);
   if (!r.quiet) printReport(m);

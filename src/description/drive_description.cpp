@@ -92,8 +92,9 @@ SprocketDesc readSprocket(Fields& f, ElementNames& names) {
   names.claim(f, s.name);
   s.center = f.vec2("center", 10.0, std::nullopt, "m");
   s.teeth = f.integer("teeth", 6, 200, std::nullopt);
-  const std::string motion = f.string("motion", {"prescribed", "free"}, std::nullopt);
+  const std::string motion = f.string("motion", {"prescribed", "free", "idler"}, std::nullopt);
   s.prescribed = motion == "prescribed";
+  s.loaded = motion == "free";
   s.inertia = f.number("inertia", 0.0, 1e3, s.prescribed ? std::optional<double>(0.0) : std::nullopt, "kg m^2",
                        !s.prescribed);
   readToothProfile(f.object("toothProfile", false), s.toothProfile);

@@ -41,7 +41,9 @@ struct SprocketDesc {
   int teeth = 0;
   ToothProfileDesc toothProfile;
   double inertia = 0.0;        // [kg m^2] sprocket and everything rigidly attached (camshaft)
-  bool prescribed = false;     // driven by the crankshaft-speed input (true) or free with a load torque
+  bool prescribed = false;     // driven by the crankshaft-speed input (true) or free
+  bool loaded = false;         // free with a load torque (motion "free"); false: prescribed, or an idler
+                               // (motion "idler": free, no load, so an FMU has no load input for it)
 };
 
 struct JointDesc {

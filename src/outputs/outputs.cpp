@@ -113,6 +113,8 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
   out.tensionerFlows = d.tensionerFlows;
   out.tightSpanForce = spanForce(m, d, m.tightSpan);
   out.slackSpanForce = spanForce(m, d, m.slackSpan);
+  out.spanForce.resize(m.spanProbes.size());
+  for (std::size_t r = 0; r < m.spanProbes.size(); ++r) out.spanForce[r] = spanForce(m, d, m.spanProbes[r]);
   monitoredLinkOutputs(m, d, monitoredLink, out);
   // energy balance, contacts carrying force, the largest joint deformation
   const int n = m.chain.links;

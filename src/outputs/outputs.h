@@ -21,6 +21,7 @@ struct Outputs {
   double chamberPressure = 0.0;     // [Pa] gauge, a hydraulic tensioner's (0 for the spring-damper law)
   HydraulicFlows tensionerFlows;    // [m3/s] its check valve's, leak's and relief valve's
   double tightSpanForce = 0.0, slackSpanForce = 0.0;  // [N]
+  std::vector<double> spanForce;    // (route elements) [N] chain force in the span leaving each
   double linkTension = 0.0;         // [N] tensile force of the monitored link
   double linkNormalForce = 0.0;     // [N] sum of contact normal forces on the monitored link
   double linkSprocketForce = 0.0, linkGuideForce = 0.0;

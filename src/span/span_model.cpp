@@ -363,6 +363,7 @@ void mapPath(const Model& m, const std::vector<RouteItem>& route, const std::vec
   };
   probe(m.description.measurement.tightSpan, sm.tightProbe);
   probe(m.description.measurement.slackSpan, sm.slackProbe);
+  for (int r = 0; r < n; ++r) sm.spanProbes.push_back({true, sm.pathParts[2 * r + 1].span, sm.pathParts[2 * r + 1].part});
 }
 
 // Path positions of the link centres at the assembled pose (pins from the middle of the first

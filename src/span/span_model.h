@@ -103,6 +103,7 @@ struct SpanModel {
   double chainDensity = 0.0;      // [kg/m] link mass / pitch
   double guideFriction = 0.0, frictionRegularization = 0.05;
   struct Probe { bool present = false; int span = -1, part = 0; } tightProbe, slackProbe;
+  std::vector<Probe> spanProbes;  // (route elements) the free part leaving each
   std::vector<double> monitoredStart;  // (links) path position of each link's centre at the start [m]
   std::vector<std::string> notes;
 

@@ -58,6 +58,8 @@ void computeSpanOutputs(const SpanModel& m, SpanData& d, const InputSignal& in, 
   auto probe = [&](const SpanModel::Probe& p) { return p.present ? d.spans[p.span].partTension(p.part) : 0.0; };
   out.tightSpanForce = probe(m.tightProbe);
   out.slackSpanForce = probe(m.slackProbe);
+  out.spanForce.resize(m.spanProbes.size());
+  for (std::size_t r = 0; r < m.spanProbes.size(); ++r) out.spanForce[r] = probe(m.spanProbes[r]);
   monitoredLinkOutputs(m, d, monitoredLink, out);
   out.energy = spanEnergy(m, d, y);
   out.contacts = 0;

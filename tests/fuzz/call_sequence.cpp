@@ -111,7 +111,8 @@ void CallSequence::choosePlan() {
   } else if (r < kShareFullInit + kShareOtherMethod) {
     stats_.plan = static_cast<std::uint32_t>(Plan::OtherMethod);
     stats_.combination = static_cast<std::uint32_t>(rng_.below(methodCombinationCount()));
-    pins_ = methodAssignments(stats_.combination, paths_);
+    pins_ = methodAssignments(stats_.combination);
+    springDamper_ = methodCombinationSpringDamper(stats_.combination);
     stepsLeft_ = methodCombinationSteps(stats_.combination);  // the slower methods: a step or two of 10 us
     shortestStep_ = longestStep_ = 1e-5;
   } else if (r < kShareFullInit + kShareOtherMethod + kShareSpan) {
@@ -137,11 +138,13 @@ bool CallSequence::instantiate() {
   enum Flaw : std::size_t { kNone, kWrongGuid, kNullGuid, kModelExchange, kNullCallbacks, kNullLogger, kNullName, kEmptyName };
   const std::size_t flaw = rng_.chance(0.85) ? kNone : 1 + rng_.below(7);
   const std::string name = rng_.chance(0.9) ? "fuzz" : "%s%n instance " + std::string(300, 'i');
+  // the FMU of the default drive, or of its spring-damper variant for the methods that need it
+  const std::string own = springDamper_ ? paths_.springDamperGuid : std::string(fmu::kGuid);
   const std::string guid = flaw == kWrongGuid ? rng_.pick({std::string("{00000000-0000-0000-0000-000000000000}"),
-                                                          std::string(fmu::kGuid).substr(1), std::string(),
-                                                          std::string(fmu::kGuid) + " "})
-                                              : std::string(fmu::kGuid);
-  const std::optional<std::string> location = resourceLocation(rng_, paths_);
+                                                          own.substr(1), std::string(), own + " "})
+                                              : own;
+  const ResourceLocation location =
+      resourceLocation(rng_, springDamper_ ? paths_.springDamperResourceDir : paths_.resourceDir);
   const fmi2Boolean visible = rng_.chance(0.5) ? fmi2True : fmi2False;
   const fmi2Boolean loggingOn = rng_.chance(0.5) ? fmi2True : fmi2False;
   callbacks_.logger = flaw == kNullLogger ? nullptr : recordLogMessage;
@@ -151,11 +154,14 @@ bool CallSequence::instantiate() {
   log_.lastMessage.clear();
   instance_ = fmi2Instantiate(flaw == kNullName ? nullptr : flaw == kEmptyName ? "" : name.c_str(),
                               flaw == kModelExchange ? fmi2ModelExchange : fmi2CoSimulation,
-                              flaw == kNullGuid ? nullptr : guid.c_str(), location ? location->c_str() : nullptr,
+                              flaw == kNullGuid ? nullptr : guid.c_str(), location.uri ? location.uri->c_str() : nullptr,
                               flaw == kNullCallbacks ? nullptr : &callbacks_, visible, loggingOn);
   ++stats_.calls;
-  if (flaw == kNone && !instance_) violation("fmi2Instantiate refused valid arguments");
-  if (flaw != kNone && instance_) violation("fmi2Instantiate accepted invalid arguments (flaw " + std::to_string(flaw) + ")");
+  const bool valid = flaw == kNone && location.valid;
+  if (valid && !instance_) violation("fmi2Instantiate refused valid arguments");
+  if (!valid && instance_)
+    violation("fmi2Instantiate accepted invalid arguments (flaw " + std::to_string(flaw) + ", resources " +
+              location.uri.value_or("NULL") + ")");
   const bool hasLogger = flaw != kNullCallbacks && flaw != kNullLogger;
   if (!instance_ && hasLogger && log_.explanations == 0) violation("fmi2Instantiate refused without an error message");
   checkStatus("fmi2Instantiate", fmi2OK);  // reports what the logger found wrong

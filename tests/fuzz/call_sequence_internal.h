@@ -134,6 +134,7 @@ class CallSequence {
   bool setupDone_ = false;
   double time_ = 0.0;  // communication point the sequence believes the FMU is at
   int stepsLeft_ = 8;  // doSteps with good arguments still allowed (they cost integration)
+  bool springDamper_ = false;  // the instance is the FMU of the spring-damper variant (FuzzPaths)
   double shortestStep_ = 1e-5, longestStep_ = 1e-4;
   std::vector<SavedState> states_;
   std::vector<Blob> blobs_;

@@ -17,9 +17,9 @@ struct Outputs {
 
 namespace {
 
-Outputs outputVariables() {
+Outputs outputVariables(const std::vector<fmu::Variable>& variables) {
   Outputs o;
-  for (const fmu::Variable& v : fmu::kVariables) {
+  for (const fmu::Variable& v : variables) {
     if (v.causality != fmu::Causality::Output) continue;
     if (v.type == fmu::Type::Real) o.realVrs.push_back(v.vr);
     else o.integerVrs.push_back(v.vr);
@@ -66,7 +66,8 @@ void CallSequence::checkRollback() {
   if (!beforeStart && phase_ != Phase::Stepping) return;
   fmi2FMUstate state = nullptr;
   if (invoke("fmi2GetFMUstate", [&] { return fmi2GetFMUstate(instance_, &state); }) != fmi2OK) return;
-  Outputs first = outputVariables(), second = outputVariables();
+  const std::vector<fmu::Variable>& variables = springDamper_ ? paths_.springDamperVariables : fmu::defaultVariables();
+  Outputs first = outputVariables(variables), second = outputVariables(variables);
   const double stepSize = rng_.logUniform(shortestStep_, longestStep_);
   double communicationPoint = 0.0;
   const bool firstDone = stepFrom(beforeStart, stepSize, communicationPoint) && readOutputs(first);

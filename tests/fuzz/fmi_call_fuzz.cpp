@@ -13,7 +13,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
+
+#include "description/fields.h"
+#include "interface/fmu_files.h"
 
 #include "fuzz_supervisor.h"
 #include "fuzz_values.h"
@@ -21,6 +25,7 @@
 namespace {
 
 using namespace chaindrive::fuzz;
+using namespace chaindrive;
 
 // Measured so that the sanitizer stage of ./run.sh test (build, ctest, this fuzz) stays within
 // about 12 minutes on 2 cores; see docs/tests.md.
@@ -59,15 +64,24 @@ bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir)
   return o.timeoutSeconds > 0.0;
 }
 
-FuzzPaths pathsIn(const std::string& sourceDir) {
+// The FMUs' resources folders (their drives and interface tables) written into workDir, as an
+// exporter writes them, and the files of the source tree.
+FuzzPaths pathsIn(const std::string& sourceDir, const std::string& workDir) {
   FuzzPaths p;
-  p.resourceDir = sourceDir + "/src/drives";
+  writeFmuFiles(workDir + "/default", std::string(defaultDriveJson()));
+  p.resourceDir = workDir + "/default/resources";
   p.driveFile = sourceDir + "/src/drives/default_drive.json";
-  // the default drive with the spring-damper tensioner law: the method combinations that take only
-  // that law (event-driven) run on it, with their bounded number of steps; a random sequence that
-  // picks event-driven meets the default drive's hydraulic tensioner and is refused (an event
-  // storm of a random sequence, unbounded, can take a minute under the sanitizers)
-  p.springDamperDriveFile = sourceDir + "/tests/data/drives/default_drive_spring_damper.json";
+  // the default drive with the spring-damper tensioner law, an FMU of its own: the method
+  // combinations that take only that law (event-driven) run on it, with their bounded number of
+  // steps; a random sequence that picks event-driven meets the default drive's hydraulic
+  // tensioner and is refused (an event storm of a random sequence, unbounded, can take a minute
+  // under the sanitizers)
+  const std::string springDamper = sourceDir + "/tests/data/drives/default_drive_spring_damper.json";
+  auto table = std::make_shared<DriveInterface>(writeFmuFiles(workDir + "/spring_damper", readDescriptionFile(springDamper)));
+  p.springDamperResourceDir = workDir + "/spring_damper/resources";
+  p.springDamperGuid = table->guid;
+  p.springDamperVariables = fmu::protocolVariables(*table);
+  p.springDamperInterface = table;
   p.notADriveFile = sourceDir + "/CMakeLists.txt";
   return p;
 }
@@ -105,7 +119,11 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   FuzzTotals totals;
-  const std::vector<FuzzFailure> failures = runSequences(options, pathsIn(sourceDir), totals);
+  if (const std::string wrong = fmu::checkDefaultValueReferences(); !wrong.empty()) {
+    std::printf("fmi_call_fuzz: the default drive's interface changed: %s (tests/fuzz/fuzz_interface.h)\n", wrong.c_str());
+    return 1;
+  }
+  const std::vector<FuzzFailure> failures = runSequences(options, pathsIn(sourceDir, CHAINDRIVE_FUZZ_WORK_DIR), totals);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printSummary(options, totals, seconds, failures.size());
   for (const FuzzFailure& f : failures)

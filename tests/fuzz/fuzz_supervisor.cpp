@@ -225,7 +225,7 @@ void ignoreLogMessage(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2Stri
 void warmSpanCalibration(const FuzzPaths& paths) {
   fmi2CallbackFunctions callbacks{};
   callbacks.logger = ignoreLogMessage;
-  const std::string location = "file://" + paths.resourceDir;
+  const std::string location = "file://" + paths.resourceDir;  // (the default drive's FMU)
   fmi2Component c = fmi2Instantiate("span calibration", fmi2CoSimulation, fmu::kGuid, location.c_str(), &callbacks,
                                     fmi2False, fmi2False);
   if (!c) return;

@@ -68,13 +68,13 @@ Assignment stringAssignment(unsigned vr, std::string value) {
 
 unsigned anyValueReference(Rng& rng) {
   if (rng.chance(0.1)) return rng.pick(kInvalidValueReferences);
-  return rng.pick(kVariables).vr;
+  return rng.pick(defaultVariables()).vr;
 }
 
 unsigned valueReferenceFor(Rng& rng, Type type) {
   if (rng.chance(0.15)) return anyValueReference(rng);
   std::vector<unsigned> matching;
-  for (const Variable& v : kVariables)
+  for (const Variable& v : defaultVariables())
     if (v.type == type) matching.push_back(v.vr);
   return rng.pick(matching);
 }
@@ -143,18 +143,18 @@ std::optional<std::string> badString(Rng& rng, unsigned vr, const FuzzPaths& pat
   return rng.pick(kBadNames);
 }
 
-std::optional<std::string> resourceLocation(Rng& rng, const FuzzPaths& paths) {
-  switch (rng.below(10)) {
-    case 0: return std::nullopt;
-    case 1: return std::string();
-    case 2: return std::string("file:///nonexistent");
-    case 3: return std::string("file:////tmp");
-    case 4: return "file:////" + paths.resourceDir + "/";
-    case 5: return "file://localhost" + paths.resourceDir;
-    case 6: return std::string("http://example.com/resources");
-    case 7: return std::string("file:///tmp/%4") + kFormatString + "%zz%";
-    case 8: return "file://" + kLongString;
-    default: return "file://" + paths.resourceDir;
+ResourceLocation resourceLocation(Rng& rng, const std::string& resourceDir) {
+  switch (rng.below(20)) {
+    case 0: return {std::nullopt, false};
+    case 1: return {std::string(), false};
+    case 2: return {std::string("file:///nonexistent"), false};
+    case 3: return {std::string("file:////tmp"), false};
+    case 4: return {"file:////" + resourceDir + "/", true};
+    case 5: return {"file://localhost" + resourceDir, true};
+    case 6: return {std::string("http://example.com/resources"), false};
+    case 7: return {std::string("file:///tmp/%4") + kFormatString + "%zz%", false};
+    case 8: return {"file://" + kLongString, false};
+    default: return {"file://" + resourceDir, true};
   }
 }
 
@@ -191,7 +191,7 @@ struct MethodCombination {
   const char* contact;  // "": the drive's (compliant)
   const char* joints;   // "": the drive's (journal-bearing)
   int steps;            // communication steps of 10 us
-  bool springDamper = false;  // on the drive file with the spring-damper tensioner law (event-driven
+  bool springDamper = false;  // on the FMU of the drive with the spring-damper tensioner law (event-driven
                               // does not integrate the default drive's hydraulic chamber)
 };
 
@@ -223,13 +223,13 @@ std::vector<Assignment> spanAssignments(Rng& rng) {
           stringAssignment(kChainJointModel, rng.pick({"", "journal-bearing"}))};
 }
 
-std::vector<Assignment> methodAssignments(std::size_t index, const FuzzPaths& paths) {
+std::vector<Assignment> methodAssignments(std::size_t index) {
   const MethodCombination& c = kMethodCombinations[index];
-  std::vector<Assignment> pins = {stringAssignment(kSolverMethod, c.integrator), stringAssignment(kContactMethod, c.contact),
-                                  stringAssignment(kChainJointModel, c.joints), stringAssignment(kFidelity, "link"),
-                                  booleanAssignment(kSolverPreload, false)};
-  if (c.springDamper) pins.push_back(stringAssignment(kDriveFile, paths.springDamperDriveFile));
-  return pins;
+  return {stringAssignment(kSolverMethod, c.integrator), stringAssignment(kContactMethod, c.contact),
+          stringAssignment(kChainJointModel, c.joints), stringAssignment(kFidelity, "link"),
+          booleanAssignment(kSolverPreload, false)};
 }
+
+bool methodCombinationSpringDamper(std::size_t index) { return kMethodCombinations[index].springDamper; }
 
 }  // namespace chaindrive::fuzz

@@ -3,22 +3,32 @@
 // and the parameter assignments that decide how far (and at what cost) a sequence can get.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "fmi2Functions.h"
 #include "fuzz_rng.h"
-#include "chaindrive/chaindrive_variables.h"
+#include "fuzz_interface.h"
 
 namespace chaindrive::fuzz {
 
 /// Files and folders of the source tree the fuzz points the FMU at.
 struct FuzzPaths {
-  std::string resourceDir;    // holds default_drive.json, like the FMU's resources folder
+  std::string resourceDir;    // the default drive's FMU's resources folder (its drive and interface)
   std::string driveFile;      // a valid drive description (the default drive's file)
-  std::string springDamperDriveFile;  // the default drive with the spring-damper tensioner law
+  // the resources of the FMU of the default drive with the spring-damper tensioner law, its GUID
+  std::string springDamperResourceDir, springDamperGuid;
+  std::shared_ptr<const DriveInterface> springDamperInterface;
+  std::vector<fmu::Variable> springDamperVariables;  // (pointing into springDamperInterface)
   std::string notADriveFile;  // an existing file that is not JSON
+};
+
+/// An fmuResourceLocation and whether it is the file URI of the resources folder.
+struct ResourceLocation {
+  std::optional<std::string> uri;  // nullopt: NULL
+  bool valid = false;
 };
 
 /// One parameter value set through the FMI setter of its type.
@@ -52,8 +62,9 @@ fmi2Integer badInteger(Rng& rng);
 std::optional<std::string> goodString(Rng& rng, unsigned vr, const FuzzPaths& paths);
 std::optional<std::string> badString(Rng& rng, unsigned vr, const FuzzPaths& paths);
 
-/// fmuResourceLocation values importers pass: good, odd and broken (nullopt: NULL).
-std::optional<std::string> resourceLocation(Rng& rng, const FuzzPaths& paths);
+/// fmuResourceLocation values importers pass: good, odd and broken (the FMU refuses those that
+/// are not the resources folder's).
+ResourceLocation resourceLocation(Rng& rng, const std::string& resourceDir);
 
 /// One or two assignments that the setters accept and the initialization rejects cheaply
 /// (before the start-state solve).
@@ -67,6 +78,8 @@ std::string methodCombinationName(std::size_t index);
 /// Communication steps of 10 us a sequence with the combination makes (they dominate its cost).
 int methodCombinationSteps(std::size_t index);
 /// The assignments of a combination, with the start-state solve switched off.
-std::vector<Assignment> methodAssignments(std::size_t index, const FuzzPaths& paths);
+std::vector<Assignment> methodAssignments(std::size_t index);
+/// Whether the combination runs on the FMU of the drive with the spring-damper tensioner law.
+bool methodCombinationSpringDamper(std::size_t index);
 
 }  // namespace chaindrive::fuzz
