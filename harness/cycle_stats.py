@@ -39,6 +39,7 @@ ORDERS = (2, 4, 6, 8)         # the engine orders of a four-cylinder engine that
 CHAMBER = "tensioner.chamberPressure"  # [Pa] gauge, the hydraulic tensioner's chamber
 BAR = 1e5                     # [Pa]: the chamber pressure's statistics are in bar
 RESAMPLE = 1440               # points per cycle for the order analysis (0.5 deg)
+RPM_PER_RAD_S = 30.0 / math.pi
 
 
 def cycle_spans(crank_phi, run_in_cycles):
@@ -64,9 +65,15 @@ def order_amplitudes(crank_phi, x, phi0, orders):
     return [float(abs(X[int(round(2 * k))])) for k in orders]
 
 
-def camshaft_timing_deg(d, cam):
-    """Timing deviation of a camshaft [deg crank angle]: twice its angle minus the crankshaft's."""
-    return np.degrees(2.0 * d[cam + ".phi"] - d["crankshaft.phi"])
+def timing_deg(d, elements, name):
+    """Timing deviation of free sprocket `name` [deg crank angle]: its angle times its ratio to the
+    crankshaft (drive.description.Elements.ratio) minus the crankshaft's angle."""
+    return np.degrees(elements.ratio(name) * d[name + ".phi"] - d[elements.crank + ".phi"])
+
+
+def is_camshaft(elements, name):
+    """A camshaft of a four-stroke engine: a free sprocket turning at half the crankshaft speed."""
+    return abs(elements.ratio(name) - 2.0) < 1e-9
 
 
 def has_chamber(d):
@@ -75,18 +82,27 @@ def has_chamber(d):
     return CHAMBER in d and bool(np.any(np.asarray(d[CHAMBER]) != 0.0))
 
 
-def level_quantities(d):
-    """(key, unit, function of one cycle's sample slice -> value) of the headline levels. The keys
-    name the output and the statistic; non-SI units carry their suffix."""
-    q = [("tensioner.F.mean", "N", lambda s: np.mean(d["tensioner.F"][s])),
-         ("tensioner.F.peakToPeak", "N", lambda s: np.ptp(d["tensioner.F"][s])),
-         ("chain.Ftight.mean", "N", lambda s: np.mean(d["chain.Ftight"][s])),
-         ("chain.Fslack.mean", "N", lambda s: np.mean(d["chain.Fslack"][s])),
-         ("tensionGuide.phi.peakToPeak_deg", "deg", lambda s: np.degrees(np.ptp(d["tensionGuide.phi"][s])))]
-    for cam in ("camshaftIntake", "camshaftExhaust"):
-        if cam + ".phi" in d:
-            timing = camshaft_timing_deg(d, cam)
-            q.append((f"{cam}.timing.peakToPeak_degCA", "deg", lambda s, x=timing: np.ptp(x[s])))
+def level_quantities(d, elements):
+    """(key, unit, function of one cycle's sample slice -> value) of the headline levels of a drive
+    (drive.description.Elements) whose outputs the record d holds. The keys name the output and the
+    statistic; non-SI units carry their suffix."""
+    q = []
+    if "tensioner.F" in d:
+        q += [("tensioner.F.mean", "N", lambda s: np.mean(d["tensioner.F"][s])),
+              ("tensioner.F.peakToPeak", "N", lambda s: np.ptp(d["tensioner.F"][s]))]
+    for probe in ("chain.Ftight", "chain.Fslack"):
+        if probe in d:
+            q.append((probe + ".mean", "N", lambda s, x=d[probe]: np.mean(x[s])))
+    if elements.tension_guide:
+        phi = d[elements.tension_guide + ".phi"]
+        q.append((elements.tension_guide + ".phi.peakToPeak_deg", "deg", lambda s: np.degrees(np.ptp(phi[s]))))
+    for sprocket in elements.free:
+        if is_camshaft(elements, sprocket.name):
+            timing = timing_deg(d, elements, sprocket.name)
+            q.append((f"{sprocket.name}.timing.peakToPeak_degCA", "deg", lambda s, x=timing: np.ptp(x[s])))
+        else:  # a pump, a balancer, an idler: its speed fluctuation
+            w = np.asarray(d[sprocket.name + ".w"]) * RPM_PER_RAD_S
+            q.append((f"{sprocket.name}.w.peakToPeak_rpm", "rpm", lambda s, x=w: np.ptp(x[s])))
     if has_chamber(d):
         p = np.asarray(d[CHAMBER]) / BAR
         q += [(CHAMBER + ".mean_bar", "bar", lambda s: np.mean(p[s])),
@@ -95,8 +111,12 @@ def level_quantities(d):
     return q
 
 
-# signals whose engine-order amplitudes are headline quantities: (output, unit, scale, key suffix)
-ORDER_SIGNALS = (("tensioner.F", "N", 1.0, ""), ("tensionGuide.phi", "deg", 180.0 / math.pi, "_deg"))
+def order_signals(elements):
+    """The signals whose engine-order amplitudes are headline quantities: (output, unit, scale, key
+    suffix): the tensioner force and the tension guide's angle."""
+    if not elements.tension_guide:
+        return ()
+    return (("tensioner.F", "N", 1.0, ""), (elements.tension_guide + ".phi", "deg", 180.0 / math.pi, "_deg"))
 
 
 def counted_spans(crank_phi, run_in_cycles, cycles=None):
@@ -105,25 +125,26 @@ def counted_spans(crank_phi, run_in_cycles, cycles=None):
     return cycle_spans(crank_phi, run_in_cycles)[:cycles]
 
 
-def per_cycle(d, run_in_cycles, meshing_order, cycles=None):
-    """Per-cycle values of every headline quantity: {key: (unit, array over the counted cycles)},
-    the first `cycles` whole cycles after the run-in (all when None); the orders are 2, 4, 6, 8 and
-    the crankshaft meshing order."""
-    spans = counted_spans(d["crankshaft.phi"], run_in_cycles, cycles)
+def per_cycle(d, run_in_cycles, elements, cycles=None):
+    """Per-cycle values of every headline quantity of the drive (drive.description.Elements):
+    {key: (unit, array over the counted cycles)}, the first `cycles` whole cycles after the run-in
+    (all when None); the orders are 2, 4, 6, 8 and the crankshaft meshing order."""
+    crank = d[elements.crank + ".phi"]
+    spans = counted_spans(crank, run_in_cycles, cycles)
     cycles = [slice(i0, i1) for i0, i1, _ in spans]
-    out = {key: (unit, np.array([float(f(s)) for s in cycles])) for key, unit, f in level_quantities(d)}
-    orders = list(ORDERS) + [meshing_order]
-    for name, unit, scale, suffix in ORDER_SIGNALS:
-        amps = order_amplitudes_per_cycle(d, spans, name, orders, scale)
+    out = {key: (unit, np.array([float(f(s)) for s in cycles])) for key, unit, f in level_quantities(d, elements)}
+    orders = list(ORDERS) + [elements.meshing_order]
+    for name, unit, scale, suffix in order_signals(elements):
+        amps = order_amplitudes_per_cycle(d, spans, name, orders, scale, elements.crank)
         for i, k in enumerate(orders):
             out[f"{name}.order{k:g}{suffix}"] = (unit, amps[:, i])
     return out
 
 
-def order_amplitudes_per_cycle(d, spans, name, orders, scale=1.0):
+def order_amplitudes_per_cycle(d, spans, name, orders, scale=1.0, crank="crankshaft"):
     """scale times the amplitudes of the engine orders of output `name` in each cycle of spans
-    (cycle_spans): an array (cycles, orders)."""
-    phi = d["crankshaft.phi"]
+    (cycle_spans) over the angle of the prescribed sprocket `crank`: an array (cycles, orders)."""
+    phi = d[crank + ".phi"]
     amps = [order_amplitudes(phi[i0:i1], d[name][i0:i1], phi0, orders) for i0, i1, phi0 in spans]
     return scale * np.array(amps).reshape(len(spans), len(orders))
 
@@ -134,30 +155,38 @@ def half_orders(highest):
     return [0.5 * i for i in range(1, int(math.floor(2.0 * highest + 1e-9)) + 1)]
 
 
-def order_spectrum(d, spans, name, orders, scale=1.0):
+def order_spectrum(d, spans, name, orders, scale=1.0, crank="crankshaft"):
     """(means, 95 % confidence half-widths) over the cycles of spans of the amplitudes of the
     engine orders of output `name` (times scale): the summary's own statistic of its order
     amplitudes (per_cycle, summarize), at any orders; arrays over orders."""
-    amps = order_amplitudes_per_cycle(d, spans, name, orders, scale)
+    amps = order_amplitudes_per_cycle(d, spans, name, orders, scale, crank)
     stats = [interval(amps[:, i])[:2] for i in range(len(orders))]
     return np.array([mean for mean, _ in stats]), np.array([half for _, half in stats])
 
 
-def headline_keys(meshing_order, hydraulic=False):
-    """The keys of every headline quantity, in the order of per_cycle(), of a drive whose tensioner
-    is hydraulic or not: the keys of a synthetic record of one engine cycle (so that they are
-    per_cycle's own, not a copy of them)."""
+def headline_keys(elements):
+    """The keys of every headline quantity of a drive (drive.description.Elements), in the order of
+    per_cycle(): the keys of a synthetic record of one engine cycle with the drive's outputs (so that
+    they are per_cycle's own, not a copy of them)."""
     phi = np.linspace(0.0, ENGINE_CYCLE, 9)
-    record = {name: np.zeros_like(phi) for name in ("tensioner.F", "chain.Ftight", "chain.Fslack", "tensionGuide.phi",
-                                                   "camshaftIntake.phi", "camshaftExhaust.phi", CHAMBER)}
-    record[CHAMBER] += 1.0 if hydraulic else 0.0
-    record["crankshaft.phi"] = phi
-    return list(per_cycle(record, 0, meshing_order))
+    names = ["tensioner.F"] if elements.tension_guide else []
+    names += [p for p, measured in (("chain.Ftight", elements.tight_span), ("chain.Fslack", elements.slack_span))
+              if measured]
+    names += [elements.tension_guide + ".phi"] if elements.tension_guide else []
+    names += [f"{s.name}.{q}" for s in elements.free for q in ("phi", "w")] + [CHAMBER]
+    record = {name: np.zeros_like(phi) for name in names}
+    record[CHAMBER] += 1.0 if elements.hydraulic else 0.0
+    record[elements.crank + ".phi"] = phi
+    return list(per_cycle(record, 0, elements))
 
 
 def order_keys(keys):
-    """{output: its order-amplitude keys} (ORDER_SIGNALS) among keys."""
-    return {name: [k for k in keys if k.startswith(name + ".order")] for name, _, _, _ in ORDER_SIGNALS}
+    """{output: its order-amplitude keys} among keys (a key <output>.order<k>[suffix])."""
+    grouped = {}
+    for k in keys:
+        if ".order" in k:
+            grouped.setdefault(k.rsplit(".order", 1)[0], []).append(k)
+    return grouped
 
 
 def lag1_autocorrelation(x):
@@ -200,9 +229,10 @@ def summarize(per_cycle_values):
     return out
 
 
-def summary(d, run_in_cycles, meshing_order):
-    """summarize() of the record d after run_in_cycles engine cycles."""
-    return summarize(per_cycle(d, run_in_cycles, meshing_order))
+def summary(d, run_in_cycles, elements):
+    """summarize() of the record d of a drive (drive.description.Elements) after run_in_cycles engine
+    cycles."""
+    return summarize(per_cycle(d, run_in_cycles, elements))
 
 
 def in_percent(s):

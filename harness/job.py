@@ -50,8 +50,9 @@ import time
 
 import numpy as np
 
-from . import checks, cycle_stats, defaults, paths
-from .drive.description import clearance_or_rigid, drive_json, is_hydraulic, meshing_order, oil_temperature_range
+from . import checks, cycle_stats, defaults, paths, runin
+from .drive.description import clearance_or_rigid, drive_json, is_hydraulic, oil_temperature_range
+from .drive.description import elements as drive_elements
 from .errors import UserError
 from .fmu import export, fmu
 from .plots import drive_picture, plots
@@ -85,7 +86,8 @@ BAR, ZERO_CELSIUS = 1e5, 273.15           # [Pa], [K]: the options' units
 class RunConfig:
     """What a run of the timing drive does, every default resolved: built once (run_config, or
     config_of from the command line) and read, never changed, by every step of the run."""
-    run_in: int                          # engine cycles discarded before the counted ones
+    run_in: int | None                   # engine cycles discarded before the counted ones; None: until the
+                                         # tensioner has settled, at least run_in_cycles (harness/runin.py)
     solver_step: float                   # [s] FMU parameter solver.step
     method: str                          # FMU parameter solver.method
     rtol: float                          # FMU parameter solver.tolerance
@@ -104,6 +106,7 @@ class RunConfig:
     speed_perturbation: float = 0.0      # relative change of the crankshaft-speed input (a replica's, harness/replicas.py)
     replicas: int = 1                    # runs of the ensemble (harness/replicas.py); 1: the run alone
     notes: tuple = ()                    # note lines on the options (given, but without effect on this drive)
+    loads: tuple = ()                    # ((sprocket, torque [N m]), ...): constant loads (--load NAME=VALUE)
 
 
 def drive_clearance_or_rigid(path):
@@ -124,7 +127,7 @@ def run_config(**options):
     plain = drive_clearance_or_rigid(given.get("drive"))
     solver = defaults.solver("timing", fidelity, clearance_or_rigid=plain)
     method = given.get("method", solver.method)
-    return RunConfig(**{"run_in": run_in_cycles(rpm), "method": method, "rtol": solver.tolerance,
+    return RunConfig(**{"run_in": None, "method": method, "rtol": solver.tolerance,
                         "solver_step": defaults.step_for("timing", fidelity, method, plain), **given})
 
 
@@ -160,46 +163,80 @@ def parameters_of(config):
     return p
 
 
-def table_inputs(torque, speed, supply_pressure=SUPPLY_PRESSURE, speed_factor=1.0):
-    """The closed loop's inputs from the tables of one engine speed: a function of (time, crank
-    angle, intake and exhaust camshaft angles in crank degrees) giving the FMU's inputs; the oil
-    supply pressure [Pa] held constant (the gallery's pressure changes slowly against a cycle); the
-    crankshaft speed times speed_factor (a replica's perturbation)."""
-    def inputs(t, crank_deg, intake_deg, exhaust_deg):
-        return {"crankshaft.w": speed_factor * speed_at(speed, crank_deg),
-                "camshaftIntake.tau": float(tables.lookup(torque, "camshaftIntake.tau", intake_deg)),
-                "camshaftExhaust.tau": float(tables.lookup(torque, "camshaftExhaust.tau", exhaust_deg)),
-                "tensioner.supplyPressure": supply_pressure}
+def table_inputs(loads, speed, elements, supply_pressure=SUPPLY_PRESSURE, speed_factor=1.0):
+    """The closed loop's inputs from the tables of one engine speed for a drive
+    (drive.description.Elements): a function of (time, {sprocket: its angle from the start [deg]})
+    giving the FMU's inputs: the prescribed sprocket's speed from the speed table at its angle (times
+    speed_factor, a replica's perturbation), each loaded sprocket's torque (tables.Load) at its own
+    angle, and a hydraulic tensioner's oil supply pressure [Pa] held constant (the gallery's pressure
+    changes slowly against a cycle). Its `angles` are the sprockets whose angles it needs."""
+    def inputs(t, angles):
+        u = {elements.crank + ".w": speed_factor * speed_at(speed, angles[elements.crank])}
+        for name, load in loads.items():
+            u[name + ".tau"] = float(load.at(angles[name]))
+        if elements.hydraulic:
+            u["tensioner.supplyPressure"] = supply_pressure
+        return u
+    inputs.angles = [elements.crank] + list(loads)
     return inputs
 
 
-def run_closed(config, duration, inputs, progress=True, fmu_file=None):
+def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=None):
     """Master loop: inputs (table_inputs) looked up at the FMU's own angles before every step.
-    fmu_file: the FMU (a file or an unpacked folder; default the drive's: export.fmu_for). Returns
-    (record, CPU seconds spent inside each fmi2DoStep)."""
+    duration [s]; or None: until the run-in (a runin.RunIn, fed each engine cycle's tensioner
+    stroke) has ended and config.cycles counted cycles followed. fmu_file: the FMU (a file or an
+    unpacked folder; default the drive's: export.fmu_for). Returns (record, CPU seconds spent inside
+    each fmi2DoStep)."""
     s = fmu.Slave("chaindrive", fmu=fmu_file or export.fmu_for(config.drive), parameters=parameters_of(config))
     step = config.step
-    n = int(round(duration / step))
-    u0 = inputs(0.0, 0.0, 0.0, 0.0)
+    angles = [f"{name}.phi" for name in inputs.angles]
+    u0 = inputs(0.0, {name: 0.0 for name in inputs.angles})
     s.initialize(inputs=u0)
     names, applied = s.outputs, list(u0)  # (every input the loop sets, recorded as input.<name>)
     rows = [[0.0] + [s.get(names)[k] for k in names] + [u0[n] for n in applied]]
-    prog = Progress(duration, "closed loop") if progress else None
-    for k in range(n):
-        o = s.get(["crankshaft.phi", "camshaftIntake.phi", "camshaftExhaust.phi"])
-        # camshafts turn at half the crankshaft speed; the tables are over crank angle
-        u = inputs(k * step, math.degrees(o["crankshaft.phi"]), 2.0 * math.degrees(o["camshaftIntake.phi"]),
-                   2.0 * math.degrees(o["camshaftExhaust.phi"]))
+    watch = CycleWatch(names, angles[0], run_in, config.cycles) if duration is None else None
+    total = duration or duration_of(dataclasses.replace(config, run_in=run_in_cycles(config.rpm)))
+    prog = Progress(total, "closed loop") if progress else None
+    k = 0
+    while (k < int(round(duration / step))) if duration is not None else not watch.done(rows):
+        o = s.get(angles)
+        u = inputs(k * step, {name: math.degrees(o[a]) for name, a in zip(inputs.angles, angles)})
         s.step(step, inputs=u, t=k * step)
         v = s.get(names)
         rows.append([(k + 1) * step] + [v[x] for x in names] + [u[n] for n in applied])
+        k += 1
         if prog:
-            prog.update((k + 1) * step)
+            prog.update(min((k * step), total))
     if prog:
         prog.done()
     s.close()
     cols = ["time"] + names + [f"input.{n}" for n in applied]
     return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
+
+
+class CycleWatch:
+    """The closed loop's end when it runs until the run-in has ended (runin.RunIn): feeds it each
+    completed engine cycle's tensioner stroke, then waits for the counted cycles."""
+
+    def __init__(self, names, crank_phi, run_in, cycles):
+        self.phi = 1 + names.index(crank_phi)  # (columns of a row: time, then the outputs)
+        self.stroke = 1 + names.index(runin.SIGNAL) if runin.SIGNAL in names else None
+        self.run_in, self.cycles = run_in, cycles
+        self.start, self.next = 0, cycle_stats.ENGINE_CYCLE  # the current cycle's first row, its end angle
+
+    def done(self, rows):
+        phi = rows[-1][self.phi]
+        if phi < self.next - 1e-9:
+            return False
+        if not self.run_in.ended:
+            stroke = [r[self.stroke] for r in rows[self.start:]] if self.stroke else [0.0]
+            if self.run_in.cycle(stroke):
+                self.next = (self.run_in.result.cycles + self.cycles) * cycle_stats.ENGINE_CYCLE
+                return phi >= self.next - 1e-9
+        else:
+            return True
+        self.start, self.next = len(rows) - 1, self.next + cycle_stats.ENGINE_CYCLE
+        return False
 
 
 def speed_at(speed, crank_deg):
@@ -208,21 +245,23 @@ def speed_at(speed, crank_deg):
     return v * 2.0 * math.pi / 60.0 if col.endswith("_rpm") else v
 
 
-def run_open(config, duration, torque, speed):
-    """fmpy.simulate_fmu with the tables as time series. Returns (record, None): fmpy's loop does
-    not tell the time spent inside fmi2DoStep."""
+def run_open(config, duration, loads, speed, elements, fmu_file):
+    """fmpy.simulate_fmu with the tables as time series (tables.time_series). Returns (record, None):
+    fmpy's loop does not tell the time spent inside fmi2DoStep."""
     from fmpy import simulate_fmu
-    ts = tables.time_series(config.rpm, duration, min(2e-5, config.step), torque_table=torque, speed_table=speed)
-    names = ["crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau"]
-    supply = "tensioner.supplyPressure"
-    arr = np.zeros(len(ts["time"]), dtype=[("time", float)] + [(n, float) for n in names + [supply]])
+    ts = tables.time_series(config.rpm, duration, min(2e-5, config.step), speed_table=speed, loads=loads,
+                            elements=elements)
+    names = [c for c in ts if c not in ("time", "crank_angle_deg")]
+    supply = ["tensioner.supplyPressure"] if elements.hydraulic else []
+    arr = np.zeros(len(ts["time"]), dtype=[("time", float)] + [(n, float) for n in names + supply])
     arr["time"] = ts["time"]
     for n in names:
         arr[n] = ts[n]
-    arr["crankshaft.w"] *= 1.0 + config.speed_perturbation
-    arr[supply] = config.supply_pressure
+    arr[elements.crank + ".w"] *= 1.0 + config.speed_perturbation
+    for n in supply:
+        arr[n] = config.supply_pressure
     prog = Progress(duration, "open loop")
-    res = simulate_fmu(str(export.fmu_for(config.drive)), stop_time=duration, output_interval=config.step, input=arr,
+    res = simulate_fmu(str(fmu_file), stop_time=duration, output_interval=config.step, input=arr,
                        start_values=parameters_of(config), step_finished=lambda t, rec: prog.update(t))
     prog.done()
     out = {n: np.asarray(res[n], dtype=float) for n in res.dtype.names}
@@ -247,7 +286,11 @@ def add_arguments(ap):
     ap.add_argument("--cycles", type=int, default=DEFAULT_CYCLES,
                     help=f"engine cycles (720 deg crank) counted after the run-in (default {DEFAULT_CYCLES})")
     ap.add_argument("--run-in", type=int, help=f"engine cycles discarded before the first counted one (default: "
-                    f"at least {RUN_IN_CYCLES} and at least {RUN_IN_TIME:g} s)", metavar="CYCLES")
+                    f"until the tensioner has settled, harness/runin.py, at least {RUN_IN_CYCLES} cycles and "
+                    f"{RUN_IN_TIME:g} s, at most {MAX_RUN_IN_TIME:g} s)", metavar="CYCLES")
+    ap.add_argument("--load", action="append", default=[], metavar="NAME=VALUE",
+                    help="a constant load torque [N m, positive opposing the rotation] on the loaded sprocket NAME, "
+                    "instead of its table (repeatable)")
     ap.add_argument("--coupling", choices=COUPLINGS, default=COUPLINGS[0])
     ap.add_argument("--replicas", type=int, default=1, metavar="K",
                     help="K runs, replica k with the crankshaft-speed input perturbed by a factor 1 + k * 1e-9: "
@@ -326,26 +369,50 @@ def config_of(ap, args):
         ap.error(f"--step {args.step:g}: the communication step must be > 0 s")
     options = {field.name: getattr(args, field.name, None) for field in dataclasses.fields(RunConfig)}
     options.update(hydraulic_options(args.drive, args.supply_pressure_bar, args.oil_temperature_c))
+    options["loads"] = tuple(constant_load(ap, text) for text in args.load)
     config = run_config(**dict(options, out=pathlib.Path(args.out)))
     problem = tables.speed_problem(config.rpm, config.tables)
     if problem:
         ap.error(problem)
+    drive_loads(config, drive_elements(config.drive))  # (a sprocket without a load: named before the run)
     return config
+
+
+def constant_load(ap, text):
+    """(name, torque [N m]) of --load NAME=VALUE."""
+    name, _, value = text.partition("=")
+    try:
+        torque = float(value)
+    except ValueError:
+        torque = math.nan
+    if not name or not math.isfinite(torque):
+        ap.error(f"--load {text}: expected NAME=VALUE, a sprocket's name and a finite torque in N m")
+    return name, torque
+
+
+def drive_loads(config, elements):
+    """{sprocket: tables.Load} of the run's loaded sprockets (tables.sprocket_loads); a sprocket
+    without a load, or a load or table that matches none, is a UserError naming them."""
+    try:
+        return tables.sprocket_loads(elements, config.rpm, config.tables, dict(config.loads))
+    except (ValueError, KeyError) as e:
+        raise UserError(str(e).strip('"')) from None
 
 
 SHOWN_CYCLES = 4  # counted cycles shown in the time histories after the run-in
 
 
-def write_plots(out, d, config, t0, per_cycle, summary):
-    """The plots of a run into out (counted cycles from t0); returns their files."""
-    rpm = config.rpm
+def write_plots(out, d, config, scene_run, per_cycle, summary):
+    """The plots of a run into out (counted cycles from the end of the run-in); returns their files."""
+    rpm, elements = config.rpm, scene_run.elements
+    spans = cycle_stats.counted_spans(d[elements.crank + ".phi"], scene_run.run_in, config.cycles)
+    t0 = d["time"][spans[0][0]]
     title = f"{rpm:g} rpm, {config.fidelity} fidelity, {config.coupling} loop, {config.method}"
     drive_picture.drive_picture(out / "drive.png", config.drive)
-    plots.time_histories(out / "time_histories.png", d, rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)",
+    plots.time_histories(out / "time_histories.png", d, rpm, title + f" (run-in and {SHOWN_CYCLES} cycles)", elements,
                          t_end=t0 + SHOWN_CYCLES * 120.0 / rpm, t_counted=t0)
     plots.cycle_statistics(out / "cycle_statistics.png", per_cycle, summary, title + ", per engine cycle")
-    plots.spectra(out / "spectra.png", d, cycle_stats.counted_spans(d["crankshaft.phi"], config.run_in, config.cycles),
-                  meshing_order(drive_json(config.drive)), title + " (counted cycles)")
+    plots.spectra(out / "spectra.png", d, spans, elements, title + " (counted cycles)")
     plots.link_cycle(out / "link_cycle.png", d, rpm, title, t0=t0, drive=config.drive, fidelity=config.fidelity)
     return [out / n for n in ("drive.png", "time_histories.png", "cycle_statistics.png", "spectra.png",
                               "link_cycle.png")]
@@ -360,10 +427,17 @@ def run_in_cycles(rpm):
 class SceneRun:
     """A scene run through the FMU: its record and what it cost."""
     record: dict            # output and input columns over time
-    run_in: int             # engine cycles discarded before the counted ones
+    settling: runin.Settling  # the run-in: engine cycles discarded before the counted ones, and why
     duration: float         # [s] simulated
     cpu: float              # [s] CPU time of the whole loop (FMU and master)
     step_cpus: list | None  # [s] CPU time inside each fmi2DoStep (closed loop only)
+    elements: object = None  # drive.description.Elements of the drive that ran
+    loads: dict = dataclasses.field(default_factory=dict)  # {sprocket: where its load came from}
+
+    @property
+    def run_in(self):
+        """Engine cycles discarded before the counted ones."""
+        return self.settling.cycles
 
     @property
     def step_cpu(self):
@@ -378,46 +452,76 @@ class SceneRun:
                 "method": config.method, "solverStep_s": config.solver_step, "communicationStep_s": config.step,
                 "tensionerModel": "hydraulic" if is_hydraulic(drive_json(config.drive)) else "spring-damper",
                 "supplyPressure_Pa": config.supply_pressure, "oilTemperature_K": config.oil_temperature,
+                "runIn": self.settling.json(), "loads": self.loads,
                 "runInCycles": self.run_in, "cycles": config.cycles, "simulated_s": self.duration, "cpu_s": self.cpu,
                 "doStepCpu_s": self.step_cpu, "cpuPerSimulatedSecond": self.cpu / self.duration,
                 "doStepCpuPerSimulatedSecond": per_s}
 
 
 def duration_of(config):
-    """[s] simulated: the run-in and the counted cycles, a tenth of a cycle and SPEED_MARGIN more so
-    that the last counted cycle is complete with the speed fluctuation."""
+    """[s] simulated with a fixed run-in: the run-in and the counted cycles, a tenth of a cycle and
+    SPEED_MARGIN more so that the last counted cycle is complete with the speed fluctuation."""
     cycle = 2.0 * 60.0 / config.rpm
     return ((config.run_in + config.cycles) * (1.0 + SPEED_MARGIN) + 0.1) * cycle
 
 
-def simulate(config, progress=True):
-    """Runs the timing drive through ChainDrive.fmu over the run-in and the counted cycles; prints
-    what runs (and a progress bar when progress)."""
-    duration = duration_of(config)
-    torque = tables.camshaft_torque(config.rpm, config.tables)
-    speed = tables.crankshaft_speed(config.rpm, config.tables)
-    print(f"ChainDrive.fmu, {config.fidelity} fidelity: {config.drive or 'default drive'}, {config.rpm:g} rpm, run-in "
-          f"{config.run_in} + {config.cycles} engine cycles ({duration * 1e3:.1f} ms), {config.coupling}-loop "
-          f"coupling, communication step {config.step * 1e6:g} us, {config.method} at {config.solver_step * 1e6:g} us")
-    print(f"tables: {torque.path} ({torque.provenance})")
+MAX_RUN_IN_TIME = 1.5  # [s] the longest run-in waiting for the tensioner to settle (harness/runin.py)
+
+
+def run_in_of(config):
+    """The run-in the configuration asks for: a runin.RunIn deciding it cycle by cycle, from
+    run_in_cycles(rpm) to MAX_RUN_IN_TIME, or the fixed number of --run-in."""
+    if config.run_in is not None:
+        return runin.RunIn(config.run_in, config.run_in, watches=False)
+    return runin.RunIn(run_in_cycles(config.rpm), math.ceil(MAX_RUN_IN_TIME * config.rpm / 120.0))
+
+
+def describe(config, fmu_file, elements, loads):
+    """Prints what runs: the FMU and its drive, the speed, the cycles, the solver, the tables and loads."""
+    fixed = f"run-in {config.run_in}" if config.run_in is not None else "run-in until the tensioner has settled"
+    print(f"{pathlib.Path(fmu_file).name}, {config.fidelity} fidelity: {config.drive or 'default drive'}, "
+          f"{config.rpm:g} rpm, {fixed}, then "
+          f"{config.cycles} engine cycles, {config.coupling}-loop coupling, communication step {config.step * 1e6:g} us, "
+          f"{config.method} at {config.solver_step * 1e6:g} us")
+    print(f"crankshaft speed ({elements.crank}.w): {tables.crankshaft_speed(config.rpm, config.tables).path}")
+    for name, load in loads.items():
+        print(f"load of {name}: {load.source}")
     if config.speed_perturbation:
         print(f"crankshaft speed input perturbed by a factor 1 {config.speed_perturbation:+.3g} (a replica)")
-    if is_hydraulic(drive_json(config.drive)):
+    if elements.hydraulic:
         print(f"hydraulic tensioner: oil supply {config.supply_pressure / BAR:g} bar (gauge), "
               f"{config.oil_temperature - ZERO_CELSIUS:g} degC")
+
+
+def simulate(config, progress=True):
+    """Runs the timing drive through its FMU over the run-in and the counted cycles; prints what
+    runs (and a progress bar when progress). The closed loop runs until the tensioner has settled
+    (or the fixed --run-in) and the counted cycles followed; the open loop a fixed run-in, and
+    whether the tensioner had settled is found afterwards."""
+    elements = drive_elements(config.drive)
+    loads = drive_loads(config, elements)
+    speed = tables.crankshaft_speed(config.rpm, config.tables)
+    fmu_file = export.fmu_for(config.drive)
+    describe(config, fmu_file, elements, loads)
+    run_in = run_in_of(config)
     cpu0 = time.process_time()
     if config.coupling == "closed":
-        inputs = table_inputs(torque, speed, config.supply_pressure, 1.0 + config.speed_perturbation)
-        d, step_cpus = run_closed(config, duration, inputs, progress)
+        inputs = table_inputs(loads, speed, elements, config.supply_pressure, 1.0 + config.speed_perturbation)
+        d, step_cpus = run_closed(config, None, inputs, progress, fmu_file, run_in)
+        settling = run_in.result
     else:
-        d, step_cpus = run_open(config, duration, torque, speed)
-    return SceneRun(d, config.run_in, duration, time.process_time() - cpu0, step_cpus)
+        fixed = dataclasses.replace(config, run_in=run_in.minimum)
+        d, step_cpus = run_open(config, duration_of(fixed), loads, speed, elements, fmu_file)
+        found = runin.detect(d, elements.crank, run_in.minimum, len(cycle_stats.cycle_spans(d[elements.crank + ".phi"], 0)))
+        settling = runin.Settling(run_in.minimum, found.settled and found.cycles <= run_in.minimum, found.drift,
+                                  found.tolerance)
+    return SceneRun(d, settling, float(d["time"][-1]), time.process_time() - cpu0, step_cpus, elements,
+                    {name: load.source for name, load in loads.items()})
 
 
 def cycle_statistics(config, scene_run):
     """(per-cycle values, summary) of the counted cycles of a scene run (harness/cycle_stats.py)."""
-    per_cycle = cycle_stats.per_cycle(scene_run.record, scene_run.run_in, meshing_order(drive_json(config.drive)),
-                                      config.cycles)
+    per_cycle = cycle_stats.per_cycle(scene_run.record, scene_run.run_in, scene_run.elements, config.cycles)
     return per_cycle, cycle_stats.summarize(per_cycle)
 
 
@@ -428,7 +532,8 @@ def run_checks(config, scene_run, per_cycle_spans):
     error = checks.energy_balance_error(scene_run.record, first, last)
     found = {"energyBalanceError": error, "energyBalanceLimit": checks.ENERGY_BALANCE_LIMIT}
     notes = list(config.notes) + checks.fidelity_notes(config.fidelity, config.drive)
-    return found, checks.energy_warnings(error), notes
+    warnings = checks.energy_warnings(error) + ([scene_run.settling.note()] if scene_run.settling.note() else [])
+    return found, warnings, notes
 
 
 def write_summary(out, summary, cost):
@@ -445,8 +550,8 @@ def report(summary, scene_run):
           f"half-width")
     for key, s in summary.items():
         print(cycle_stats.format_line(key, s))
-    F = summary["tensioner.F.mean"]
-    rel = F["ci95"] / abs(F["mean"])
+    F = summary.get("tensioner.F.mean")
+    rel = F["ci95"] / abs(F["mean"]) if F else 0.0
     if rel > 0.01:
         need = math.ceil(F["cycles"] * (rel / 0.01) ** 2)
         print(f"  note: the tensioner-force mean is known to {100 * rel:.2f} %; about {need} cycles give 1 %")
@@ -467,11 +572,10 @@ def run(config):
     write_csv(csv, scene_run.record)
     per_cycle, summary = cycle_statistics(config, scene_run)
     d = scene_run.record
-    spans = cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[:config.cycles]
+    spans = cycle_stats.cycle_spans(d[scene_run.elements.crank + ".phi"], scene_run.run_in)[:config.cycles]
     found, warnings, notes = run_checks(config, scene_run, spans)
     write_summary(out, summary, dict(scene_run.cost(config), checks=found, warnings=warnings, notes=notes))
-    t0 = d["time"][spans[0][0]]
-    pictures = write_plots(out, d, config, t0, per_cycle, summary)
+    pictures = write_plots(out, d, config, scene_run, per_cycle, summary)
     report(summary, scene_run)
     print(f"  checks: energy balance {100 * found['energyBalanceError']:+.2f} % of the dissipated energy (limit "
           f"{100 * checks.ENERGY_BALANCE_LIMIT:g} %)")

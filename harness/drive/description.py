@@ -1,5 +1,6 @@
 """The drive description from Python: its JSON (the default drive or a file), what the
 analyses need from it, and its assembled geometry (chaindrive-info)."""
+import dataclasses
 import json
 import os
 import subprocess
@@ -46,10 +47,61 @@ def clearance_or_rigid(drive):
 def meshing_order(drive):
     """The crankshaft meshing order: the number of teeth of the prescribed (crankshaft) sprocket,
     in engine orders per crankshaft revolution."""
-    for s in drive["sprockets"]:
-        if s.get("motion") == "prescribed":
-            return int(s["teeth"])
-    raise ValueError("the drive has no prescribed sprocket")
+    return elements(drive).crank_teeth
+
+
+@dataclasses.dataclass(frozen=True)
+class Sprocket:
+    name: str
+    teeth: int
+    loaded: bool      # a load-torque input (motion "free"); False: an idler
+
+
+@dataclasses.dataclass(frozen=True)
+class Elements:
+    """A drive's elements by role, named as its FMU's variables are (src/interface/): what the
+    master loop, the cycle statistics and the plots need of a drive."""
+    crank: str                    # the prescribed sprocket (its speed input <crank>.w, angle <crank>.phi)
+    crank_teeth: int
+    free: tuple                   # Sprocket of every free sprocket, in the interface's order (tight side first)
+    tension_guide: str | None     # the tensioner's guide (<name>.phi), None without a tensioner
+    hydraulic: bool               # the tensioner is hydraulic (its chamber and supply pressure)
+    tight_span: bool              # the drive measures a tight span (output chain.Ftight)
+    slack_span: bool              # and a slack span (chain.Fslack)
+
+    @property
+    def meshing_order(self):
+        """The crankshaft meshing order: the prescribed sprocket's teeth, orders per crankshaft revolution."""
+        return self.crank_teeth
+
+    @property
+    def loaded(self):
+        """The names of the sprockets with a load-torque input."""
+        return [s.name for s in self.free if s.loaded]
+
+    def ratio(self, name):
+        """Crankshaft revolutions per revolution of sprocket `name` (its teeth over the crankshaft's)."""
+        return next(s.teeth for s in self.free if s.name == name) / self.crank_teeth
+
+
+def elements(drive=None):
+    """The Elements of a drive (a dict, a file, or None: the default drive); the free sprockets and
+    pivoting guides in the order of the FMU interface (src/interface/drive_interface.cpp: from the
+    prescribed sprocket against the running direction along the route)."""
+    d = drive if isinstance(drive, dict) else drive_json(drive)
+    sprockets = {s["name"]: s for s in d["sprockets"]}
+    crank = next((s for s in d["sprockets"] if s.get("motion") == "prescribed"), None)
+    if crank is None:
+        raise ValueError("the drive has no prescribed sprocket")
+    route = d["chain"]["route"]
+    start = route.index(crank["name"]) if crank["name"] in route else 0
+    order = [route[(start - i) % len(route)] for i in range(1, len(route))]
+    free = tuple(Sprocket(n, int(sprockets[n]["teeth"]), sprockets[n].get("motion") == "free")
+                 for n in order if n in sprockets)
+    tensioner = d.get("tensioner")
+    measured = d.get("measurement", {})
+    return Elements(crank["name"], int(crank["teeth"]), free, tensioner["guide"] if tensioner else None,
+                    is_hydraulic(d), len(measured.get("tightSpan", [])) == 2, len(measured.get("slackSpan", [])) == 2)
 
 
 def geometry(drive=None):

@@ -15,9 +15,6 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
 from .. import paths
 from ..errors import MissingBuild, UserError
 
-INPUTS = ("crankshaft.w", "camshaftIntake.tau", "camshaftExhaust.tau")
-
-
 def fmu_path(name="ChainDrive"):
     """The built FMU: ChainDrive (the timing drive) or CVTChain (the chain CVT)."""
     path = paths.BUILD / f"{name}.fmu"

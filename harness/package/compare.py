@@ -28,6 +28,7 @@ import numpy as np
 from fmpy import read_model_description
 
 from .. import job
+from ..drive.description import elements as drive_elements
 from ..tables import tables
 from ..fmu import fmu
 from .binaries import fmi2_include_dir
@@ -92,11 +93,12 @@ def run_timing(fmu_dir, duration, method=None):
 def run_recorded(config, duration, fmu_dir=None):
     """ChainDrive run as `config` says over `duration`, in the main job's closed loop with the
     measured-torque tables: (Run, the CPU seconds inside each fmi2DoStep)."""
-    inputs = job.table_inputs(tables.camshaft_torque(config.rpm, config.tables),
-                              tables.crankshaft_speed(config.rpm, config.tables))
+    elements = drive_elements(config.drive)
+    inputs = job.table_inputs(job.drive_loads(config, elements), tables.crankshaft_speed(config.rpm, config.tables),
+                              elements)
     record, step_cpus = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
     # (the record's inputs of row 0 are those of the initialization, looked up at zero angles)
-    applied = {name: np.array(record[f"input.{name}"]) for name in inputs(0.0, 0.0, 0.0, 0.0)}
+    applied = {name: np.array(record[f"input.{name}"]) for name in inputs(0.0, {n: 0.0 for n in inputs.angles})}
     outputs = {k: v for k, v in record.items() if k != "time" and not k.startswith("input.")}
     return Run(job.parameters_of(config), applied, outputs), step_cpus
 

@@ -23,47 +23,54 @@ RUN_IN_SHADE = "0.92"  # the run-in's shade in time histories
 COMPRESSION_NOTE = "< 0: compression (the joint's pins pushed together)"
 
 
-def time_histories(path, d, rpm, title, t_end=None, t_counted=None):
-    """The outputs over time, up to t_end (default: all); the run-in, up to t_counted, shaded; a
-    hydraulic tensioner's chamber pressure in a last panel (cycle_stats.has_chamber)."""
+def time_histories(path, d, rpm, title, elements, t_end=None, t_counted=None):
+    """The outputs of a drive (drive.description.Elements) over time, up to t_end (default: all);
+    the run-in, up to t_counted, shaded: the tensioner force, the measured spans' forces, the
+    tension guide's angle, every free sprocket's timing (a camshaft) or speed (a pump, an idler),
+    the chain's torque on the crankshaft, and a hydraulic tensioner's chamber pressure
+    (cycle_stats.has_chamber). Panels whose outputs the drive has not are left out."""
     if t_end is not None:
         d = {k: v[d["time"] <= t_end] for k, v in d.items()}
     t = d["time"] * 1e3
-    chamber = cycle_stats.has_chamber(d)
-    panels = 6 if chamber else 5
-    fig, ax = plt.subplots(panels, 1, figsize=(10, 2.3 * panels), sharex=True)
+    panels = [p for p in time_panels(d, elements) if p]
+    fig, ax = plt.subplots(len(panels), 1, figsize=(10, 2.3 * len(panels)), sharex=True, squeeze=False)
+    ax = ax[:, 0]
+    for a, (label, lines) in zip(ax, panels):
+        for name, y in lines:
+            a.plot(t, y, lw=0.6, label=name)
+        a.set_ylabel(label)
+        if len(lines) > 1:
+            a.legend(fontsize=7, loc="upper right")
+        a.grid(True, lw=0.3)
     if t_counted is not None:
         for a in ax:
             a.axvspan(t[0], t_counted * 1e3, color=RUN_IN_SHADE, lw=0, zorder=0)
         for text, at in (("run-in (discarded)", 0.5 * (t[0] + t_counted * 1e3)),
                          ("counted cycles", 0.5 * (t_counted * 1e3 + t[-1]))):
             ax[0].annotate(text, (at, 1.0), xycoords=("data", "axes fraction"), ha="center", va="bottom", fontsize=8)
-    ax[0].plot(t, d["tensioner.F"], lw=0.7)
-    ax[0].set_ylabel("tensioner force [N]")
-    ax[1].plot(t, d["chain.Ftight"], lw=0.5, label="tight span")
-    ax[1].plot(t, d["chain.Fslack"], lw=0.5, label="slack span")
-    ax[1].axhline(0.0, color="k", lw=0.6, label=f"0 N; {COMPRESSION_NOTE}")
-    ax[1].set_ylabel("span force [N]")
-    ax[1].legend(fontsize=7, loc="upper right")
-    ax[2].plot(t, np.degrees(d["tensionGuide.phi"]), lw=0.7)
-    ax[2].set_ylabel("tension guide [deg]")
-    for name in ("camshaftIntake", "camshaftExhaust"):
-        if name + ".phi" in d:
-            ax[3].plot(t, cycle_stats.camshaft_timing_deg(d, name), lw=0.6, label=name)
-    ax[3].set_ylabel("cam timing dev. [deg CA]")
-    ax[3].legend(fontsize=7, loc="upper right")
-    ax[4].plot(t, d["crankshaft.tau"], lw=0.6)
-    ax[4].set_ylabel("chain torque on crank [N m]")
-    if chamber:
-        ax[5].plot(t, d[cycle_stats.CHAMBER] / cycle_stats.BAR, lw=0.6, color="tab:purple")
-        ax[5].set_ylabel("tensioner chamber,\ngauge [bar]")
     ax[-1].set_xlabel("time [ms]")
-    for a in ax:
-        a.grid(True, lw=0.3)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def time_panels(d, elements):
+    """(y label, [(legend, values)]) of each panel of time_histories, None for one the drive has not."""
+    spans = [(name, d[f"chain.F{name}"]) for name in ("tight", "slack") if f"chain.F{name}" in d]
+    if spans:
+        spans.append((f"0 N; {COMPRESSION_NOTE}", np.zeros_like(d["time"])))
+    cams = [s.name for s in elements.free if cycle_stats.is_camshaft(elements, s.name)]
+    others = [s.name for s in elements.free if not cycle_stats.is_camshaft(elements, s.name)]
+    guide = elements.tension_guide
+    return [("tensioner force [N]", [("tensioner.F", d["tensioner.F"])]) if "tensioner.F" in d else None,
+            ("span force [N]", spans) if spans else None,
+            (f"{guide} [deg]", [(guide, np.degrees(d[guide + ".phi"]))]) if guide else None,
+            ("cam timing dev. [deg CA]", [(n, cycle_stats.timing_deg(d, elements, n)) for n in cams]) if cams else None,
+            ("speed [rpm]", [(n, d[n + ".w"] * cycle_stats.RPM_PER_RAD_S) for n in others]) if others else None,
+            (f"chain torque on {elements.crank} [N m]", [(elements.crank + ".tau", d[elements.crank + ".tau"])]),
+            ("tensioner chamber,\ngauge [bar]", [("chamber", d[cycle_stats.CHAMBER] / cycle_stats.BAR)])
+            if cycle_stats.has_chamber(d) else None]
 
 
 def periodic_window(time, t0):
@@ -79,20 +86,21 @@ def periodic_window(time, t0):
 SPECTRUM_HIGHEST_ORDER = 40  # engine orders drawn in spectra.png (at least the meshing order + 4)
 
 
-def spectra(path, d, spans, meshing, title):
+def spectra(path, d, spans, elements, title):
     """Order spectra of the tensioner force and the tension-guide angle over the counted cycles
     (spans, cycle_stats.counted_spans; the paper's Figure 13): every cycle's amplitudes from the
     crank-angle resampling of the summary, their mean over the cycles as the bar and its 95 %
     confidence half-width as the error bar (cycle_stats.order_spectrum), so that the bars at the
     headline orders are the summary's numbers, written above them. Returns {output: (orders, bar
     heights drawn)}."""
+    meshing = elements.meshing_order
     orders = cycle_stats.half_orders(max(SPECTRUM_HIGHEST_ORDER, meshing + 4))
     headline = list(cycle_stats.ORDERS) + [meshing]
-    signals = cycle_stats.ORDER_SIGNALS
+    signals = cycle_stats.order_signals(elements)
     fig, ax = plt.subplots(len(signals), 1, figsize=(11, 3.6 * len(signals) + 0.8), sharex=True, squeeze=False)
     drawn = {}
     for a, (name, unit, scale, _) in zip(ax[:, 0], signals):
-        mean, half = cycle_stats.order_spectrum(d, spans, name, orders, scale)
+        mean, half = cycle_stats.order_spectrum(d, spans, name, orders, scale, elements.crank)
         colours = ["tab:orange" if o in headline else "tab:blue" for o in orders]
         bars = a.bar(orders, mean, width=0.3, color=colours, yerr=half, error_kw={"lw": 0.6, "ecolor": "0.25"})
         drawn[name] = (np.array(orders), np.array([bar.get_height() for bar in bars.patches]))

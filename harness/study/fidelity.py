@@ -43,7 +43,7 @@ import json
 import pathlib
 
 from .. import cycle_stats, job, paths, runs
-from ..drive.description import drive_json, is_hydraulic, meshing_order
+from ..drive.description import drive_json, elements, is_hydraulic
 from . import ladder
 
 # the main job's cycles: the span model itself is cheap, but the Python master loop costs about
@@ -89,7 +89,7 @@ def check(ap, args):
         if cycles < 2:
             ap.error(f"{option} {cycles}: at least 2 counted cycles are needed for a confidence interval")
     drive = drive_json(args.drive)
-    keys = cycle_stats.headline_keys(meshing_order(drive), is_hydraulic(drive))
+    keys = cycle_stats.headline_keys(elements(drive))
     specs = args.tolerance or list(ladder.default_tolerances(is_hydraulic(drive)))
     args.tolerances = [parse_tolerance(ap, spec, keys) for spec in specs]
     args.out = args.out or str(paths.RESULTS / "fidelity")

@@ -8,7 +8,7 @@ import pathlib
 import numpy as np
 
 from .. import runs
-from ..drive.description import meshing_order
+from ..drive.description import elements
 from ..job import run_in_cycles
 from ..tables import tables
 from .errors import as_accurate_as_physics, compare, reference_statistics, short_errors, statistics
@@ -22,7 +22,7 @@ class Study:
         self.quick = args.quick
         self.out = pathlib.Path(args.out)
         self.runs_dir = self.out / "runs"
-        self.mesh = meshing_order(default_drive_json())
+        self.mesh = elements(default_drive_json())  # (the default drive's elements: the cycle statistics')
         self.log_lines = []
         self.timeout = 120.0 if self.quick else args.timeout
 

@@ -21,14 +21,13 @@ import traceback
 import numpy as np
 
 from .. import cycle_stats, job, paths
-from ..drive.description import drive_json, meshing_order
-from ..fmu import fmu
+from ..drive.description import elements as drive_elements
+from ..fmu import export, fmu
 from ..tables import tables
 
 SPECTRUM_STEP = 0.5         # engine orders per bin of the spectra (half orders: the camshafts')
 SPECTRUM_BEYOND_MESHING = 4  # the spectra reach this many orders beyond the meshing order
-FORCE_SIGNALS = ("tensioner.F", "chain.Ftight", "chain.Fslack")  # minima and maxima per speed [N]
-SPECTRUM_SIGNALS = (("tensioner.F", "N", 1.0), ("tensionGuide.phi", "deg", 180.0 / math.pi))
+FORCE_SIGNALS = ("tensioner.F", "chain.Ftight", "chain.Fslack")  # minima and maxima per speed [N], those the drive has
 # a hydraulic tensioner's chamber: its lowest and highest pressure over a point's counted cycles
 # [bar] (the summary's min_bar is the mean of each cycle's minimum)
 CHAMBER_EXTREMES = {cycle_stats.CHAMBER + ".lowest_bar": np.min, cycle_stats.CHAMBER + ".highest_bar": np.max}
@@ -51,6 +50,7 @@ class Case:
     ramp_s: float | None = None
     supply_pressure: float | None = None  # [Pa] gauge, the hydraulic tensioner's oil; None: the main job's
     oil_temperature: float | None = None  # [K]; None: the main job's
+    loads: tuple = ()                     # ((sprocket, torque [N m]), ...): constant loads instead of tables
 
     @property
     def runup(self):
@@ -70,7 +70,8 @@ class Case:
         every option the case does not set at the main job's defaults."""
         return job.run_config(rpm=self.rpm, fidelity=self.fidelity, method=self.method, solver_step=self.solver_step,
                               cycles=self.cycles, drive=self.drive, tables=self.tables,
-                              supply_pressure=self.supply_pressure, oil_temperature=self.oil_temperature)
+                              supply_pressure=self.supply_pressure, oil_temperature=self.oil_temperature,
+                              loads=self.loads)
 
 
 def _digest_files(paths_, h):
@@ -81,9 +82,9 @@ def _digest_files(paths_, h):
 
 def code_version():
     """sha256 of the FMU binary and of the harness's Python sources: results computed by other
-    code are not taken from the cache."""
+    code are not taken from the cache. (Every drive's FMU carries the same binary.)"""
     h = hashlib.sha256()
-    _digest_files([fmu.fmu_path()], h)
+    _digest_files([paths.BUILD / export.NATIVE_BINARY], h)
     _digest_files(sorted(pathlib.Path(paths.ROOT / "harness").rglob("*.py")), h)
     return h.hexdigest()
 
@@ -119,17 +120,19 @@ def _run_stationary(case):
     config = case.config()
     scene_run = job.simulate(config, progress=False)
     _, summary = job.cycle_statistics(config, scene_run)
-    d = scene_run.record
-    spans = cycle_stats.cycle_spans(d["crankshaft.phi"], scene_run.run_in)[:case.cycles]
-    row = {"rpm": case.rpm, "cycles": len(spans)}
+    d, elements = scene_run.record, scene_run.elements
+    spans = cycle_stats.cycle_spans(d[elements.crank + ".phi"], scene_run.run_in)[:case.cycles]
+    row = {"rpm": case.rpm, "cycles": len(spans), "runInCycles": scene_run.run_in}
     row.update({k: s["mean"] for k, s in summary.items()})
     row.update({k + ".ci95": s["ci95"] for k, s in summary.items()})
     counted = slice(spans[0][0], spans[-1][1])
     row.update(extremes(d, counted))
-    orders = spectrum_orders(meshing_order(drive_json(case.drive)))
-    spectra = {name: np.mean(cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale), axis=0).tolist()
-               for name, _, scale in SPECTRUM_SIGNALS}
+    orders = spectrum_orders(elements.meshing_order)
+    spectra = {name: np.mean(cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale, elements.crank),
+                             axis=0).tolist()
+               for name, _, scale, _ in cycle_stats.order_signals(elements)}
     return {"status": "ok", "rows": [row], "orders": orders, "spectra": {k: [v] for k, v in spectra.items()},
+            "spectrumUnits": spectrum_units(elements),
             "units": _with_force_units({k: s["unit"] for k, s in summary.items()}), "cpu_s": scene_run.cpu,
             "simulated_s": scene_run.duration}
 
@@ -138,13 +141,18 @@ def extremes(d, samples):
     """The forces' minima and maxima [N] over the samples (a slice) of the record, and a hydraulic
     chamber's lowest and highest pressure [bar]."""
     out = {}
-    for name in FORCE_SIGNALS:
+    for name in (n for n in FORCE_SIGNALS if n in d):
         out[name + ".min"] = float(np.min(d[name][samples]))
         out[name + ".max"] = float(np.max(d[name][samples]))
     if cycle_stats.has_chamber(d):
         out.update({key: float(f(d[cycle_stats.CHAMBER][samples])) / cycle_stats.BAR
                     for key, f in CHAMBER_EXTREMES.items()})
     return out
+
+
+def spectrum_units(elements):
+    """{signal: unit} of the spectra of a drive's case (cycle_stats.order_signals)."""
+    return {name: unit for name, unit, _, _ in cycle_stats.order_signals(elements)}
 
 
 def _with_force_units(units):
@@ -154,56 +162,59 @@ def _with_force_units(units):
                 **{key: "bar" for key in CHAMBER_EXTREMES})
 
 
-def runup_inputs(case, ramp_start):
-    """The run-up's inputs: the mean speed held at case.rpm up to ramp_start [s], then ramped
-    linearly to case.rpm_end over case.ramp_s; the camshaft torques and the crankshaft speed's
-    fluctuation (relative to its table's speed) interpolated linearly in engine speed between the
-    tables of the two nearest tabulated speeds (the tables' own speed dependence), and those of
-    the lowest or highest tabulated speed below or above the tables' range."""
-    speeds = tables.tabulated_speeds(case.tables)
+def runup_inputs(case, ramp_start, elements):
+    """The run-up's inputs for a drive (drive.description.Elements): the mean speed held at
+    case.rpm up to ramp_start [s], then ramped linearly to case.rpm_end over case.ramp_s; the load
+    torques and the crankshaft speed's fluctuation (relative to its table's speed) interpolated
+    linearly in engine speed between the tables of the two nearest tabulated speeds (the tables'
+    own speed dependence), and those of the lowest or highest tabulated speed below or above the
+    tables' range."""
+    speeds = sorted(tables.available_speeds(case.tables, "crankshaft_speed"))
     if not speeds:
-        raise ValueError(f"run-up: no camshaft_torque_<n>rpm.csv and crankshaft_speed_<n>rpm.csv tables in "
-                         f"{case.tables or tables.DATA_DIR}")
-    supply = case.config().supply_pressure
-    at_speed = {r: job.table_inputs(tables.camshaft_torque(r, case.tables), tables.crankshaft_speed(r, case.tables),
-                                    supply) for r in speeds}
+        raise ValueError(f"run-up: no crankshaft_speed_<n>rpm.csv tables in {case.tables or tables.DATA_DIR}")
+    config = case.config()
+    at_speed = {r: job.table_inputs(job.drive_loads(dataclasses.replace(config, rpm=r), elements),
+                                    tables.crankshaft_speed(r, case.tables), elements, config.supply_pressure)
+                for r in speeds}
+    speed = elements.crank + ".w"
 
-    def inputs(t, crank_deg, intake_deg, exhaust_deg):
+    def inputs(t, angles):
         ramp = min(max((t - ramp_start) / case.ramp_s, 0.0), 1.0)
         rpm = case.rpm + (case.rpm_end - case.rpm) * ramp
         i = min(max(int(np.searchsorted(speeds, rpm)) - 1, 0), max(len(speeds) - 2, 0))
         r1, r2 = speeds[i], speeds[min(i + 1, len(speeds) - 1)]
         w = min(max((rpm - r1) / (r2 - r1), 0.0), 1.0) if r2 > r1 else 0.0  # held beyond the tables
-        at = [at_speed[r](t, crank_deg, intake_deg, exhaust_deg) for r in (r1, r2)]
-        fluctuation = [u["crankshaft.w"] / fmu.rpm_to_rad_s(r) for u, r in zip(at, (r1, r2))]
+        at = [at_speed[r](t, angles) for r in (r1, r2)]
+        fluctuation = [u[speed] / fmu.rpm_to_rad_s(r) for u, r in zip(at, (r1, r2))]
         out = {k: (1.0 - w) * at[0][k] + w * at[1][k] for k in at[0]}
-        out["crankshaft.w"] = fmu.rpm_to_rad_s(rpm) * ((1.0 - w) * fluctuation[0] + w * fluctuation[1])
+        out[speed] = fmu.rpm_to_rad_s(rpm) * ((1.0 - w) * fluctuation[0] + w * fluctuation[1])
         return out
+    inputs.angles = at_speed[speeds[0]].angles
     return inputs
 
 
 def _run_runup(case):
     if not (case.ramp_s and case.ramp_s > 0.0):
         raise ValueError(f"run-up: ramp time {case.ramp_s} s must be positive")
-    config = case.config()
-    run_in = config.run_in
+    config, elements = case.config(), drive_elements(case.drive)
+    run_in = job.run_in_cycles(case.rpm)  # (fixed: the ramp starts at a known time)
     ramp_start = run_in * 120.0 / case.rpm
     cpu0 = time.process_time()
-    d, _ = job.run_closed(config, ramp_start + case.ramp_s, runup_inputs(case, ramp_start), progress=False)
+    d, _ = job.run_closed(config, ramp_start + case.ramp_s, runup_inputs(case, ramp_start, elements), progress=False)
     cpu = time.process_time() - cpu0
-    per_cycle = cycle_stats.per_cycle(d, run_in, meshing_order(drive_json(case.drive)))
-    spans = cycle_stats.cycle_spans(d["crankshaft.phi"], run_in)
+    per_cycle = cycle_stats.per_cycle(d, run_in, elements)
+    spans = cycle_stats.cycle_spans(d[elements.crank + ".phi"], run_in)
     if not spans:
         raise ValueError(f"run-up: the ramp of {case.ramp_s:g} s holds no whole engine cycle")
     rows = []
     for j, (i0, i1, _) in enumerate(spans):
-        row = {"rpm": float(np.mean(d["input.crankshaft.w"][i0:i1])) * 60.0 / (2.0 * math.pi), "cycles": 1}
+        row = {"rpm": float(np.mean(d[f"input.{elements.crank}.w"][i0:i1])) * 60.0 / (2.0 * math.pi), "cycles": 1}
         row.update({k: float(v[j]) for k, (_, v) in per_cycle.items()})
         row.update(extremes(d, slice(i0, i1)))
         rows.append(row)
-    orders = spectrum_orders(meshing_order(drive_json(case.drive)))
-    spectra = {name: cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale).tolist()
-               for name, _, scale in SPECTRUM_SIGNALS}
-    return {"status": "ok", "rows": rows, "orders": orders, "spectra": spectra,
+    orders = spectrum_orders(elements.meshing_order)
+    spectra = {name: cycle_stats.order_amplitudes_per_cycle(d, spans, name, orders, scale, elements.crank).tolist()
+               for name, _, scale, _ in cycle_stats.order_signals(elements)}
+    return {"status": "ok", "rows": rows, "orders": orders, "spectra": spectra, "spectrumUnits": spectrum_units(elements),
             "units": _with_force_units({k: u for k, (u, _) in per_cycle.items()}), "cpu_s": cpu,
             "simulated_s": ramp_start + case.ramp_s}

@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from .. import cycle_stats, job
-from .cases import CHAMBER_EXTREMES, FORCE_SIGNALS, SPECTRUM_SIGNALS
+from .cases import CHAMBER_EXTREMES, FORCE_SIGNALS
 
 CUT_ORDERS = (2, 4, 6, 8)
 
@@ -25,10 +25,11 @@ def dataset(cases, results, attrs):
     """The Dataset of a sweep's cases and results (run_case's dicts), with attrs (the drive's
     parameters, the code version) as global attributes."""
     import xarray as xr
-    points, spectra, status = [], {name: [] for name, _, _ in SPECTRUM_SIGNALS}, []
     ok = [r for r in results if r["status"] == "ok"]
     orders = ok[0]["orders"] if ok else []
     units = ok[0]["units"] if ok else {}
+    spectrum_units = ok[0]["spectrumUnits"] if ok else {}
+    points, spectra, status = [], {name: [] for name in spectrum_units}, []
     for case, r in zip(cases, results):
         if r["status"] == "ok":
             points += r["rows"]
@@ -43,7 +44,7 @@ def dataset(cases, results, attrs):
     keys = sorted({k for p in points for k in p if k != "rpm"})
     data = {k: ("point", np.array([p.get(k, math.nan) for p in points], float),
                 {"units": units.get(k.removesuffix(".ci95"), "1")}) for k in keys}
-    for (name, unit, _) in SPECTRUM_SIGNALS:
+    for name, unit in spectrum_units.items():
         data[name + ".orderAmplitude"] = (("point", "order"), np.array(spectra[name], float).reshape(len(points), -1),
                                           {"units": unit, "long_name": f"engine-order amplitude of {name}"})
     data["status"] = ("point", np.array([s for s, _, _ in status], dtype=object))
@@ -94,11 +95,16 @@ RUNUP_BLOCK = 8  # run-up: consecutive engine cycles per mean with a confidence 
 COMPRESSION_NOTE = "< 0: compression (the joint's pins pushed together)"
 
 
+def spectrum_signals(ds):
+    """(name, unit) of the signals whose order spectra the dataset holds."""
+    return [(v[:-len(".orderAmplitude")], ds[v].attrs["units"]) for v in ds.data_vars if v.endswith(".orderAmplitude")]
+
+
 def plots(ds, out, meshing, title):
     """Campbell diagrams, order cuts and force ranges over speed: the PNG files written."""
     from ..plots import plt
     ok = ds.where(ds["status"] == "ok", drop=True).sortby("rpm")
-    written = [_campbell(plt, ok, out, name, unit, meshing, title) for name, unit, _ in SPECTRUM_SIGNALS]
+    written = [_campbell(plt, ok, out, name, unit, meshing, title) for name, unit in spectrum_signals(ds)]
     written.append(_order_cuts(plt, ok, out, meshing, title))
     written.append(_force_ranges(plt, ok, out, title))
     if cycle_stats.CHAMBER + ".mean_bar" in ok:
@@ -166,7 +172,7 @@ def _order_cut(ax, ok, key, label):
 
 def _order_cuts(plt, ok, out, meshing, title):
     fig, axes = plt.subplots(1, 2, figsize=(12.5, 5))
-    for ax, (name, unit, _) in zip(axes, SPECTRUM_SIGNALS):
+    for ax, (name, unit) in zip(axes, spectrum_signals(ok)):
         for k, key in order_cut_keys(name, meshing).items():
             what = _order_cut(ax, ok, key, f"order {k:g}" + (" (meshing)" if k == meshing else ""))
         ax.set(xlabel="engine speed [rpm]", ylabel=f"amplitude [{unit}]", title=f"order cuts: {name}")
@@ -184,9 +190,11 @@ def _order_cuts(plt, ok, out, meshing, title):
 def _force_ranges(plt, ok, out, title):
     """Per force a panel: its mean (with its 95 % confidence interval where the points have one)
     and the band from its minimum to its maximum over the counted cycles."""
-    fig, axes = plt.subplots(len(FORCE_SIGNALS), 1, figsize=(8.5, 2.6 * len(FORCE_SIGNALS) + 0.8), sharex=True)
+    forces = [name for name in FORCE_SIGNALS if name + ".mean" in ok]
+    fig, axes = plt.subplots(len(forces), 1, figsize=(8.5, 2.6 * len(forces) + 0.8), sharex=True, squeeze=False)
+    axes = axes[:, 0]
     rpm = ok["rpm"].values
-    for ax, name in zip(axes, FORCE_SIGNALS):
+    for ax, name in zip(axes, forces):
         mean = ok[name + ".mean"].values
         ci = ok[name + ".mean.ci95"].values if name + ".mean.ci95" in ok else np.full_like(mean, np.nan)
         ax.fill_between(rpm, ok[name + ".min"], ok[name + ".max"], color="tab:blue", alpha=0.2, lw=0,

@@ -33,12 +33,14 @@ along `point` (supply_pressure_bar, oil_temperature_c).
 """
 import dataclasses
 import itertools
+import math
 import pathlib
 import sys
 import time
 
 from .. import checks, cycle_stats, job, paths
 from ..drive.description import drive_json, meshing_order
+from ..drive.description import elements as drive_elements
 from .cases import Case, code_version
 from .execute import run_cases
 from .results import attributes, dataset, plots, write_netcdf
@@ -90,6 +92,8 @@ def add_arguments(ap):
     ap.add_argument("--cycles", type=int, default=8, help="speed sweep: engine cycles counted per speed (default 8)")
     ap.add_argument("--drive", help="drive description (default: the FMU's default drive)")
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
+    ap.add_argument("--load", action="append", default=[], metavar="NAME=VALUE",
+                    help="a constant load torque [N m] on the loaded sprocket NAME instead of its table (repeatable)")
     ap.add_argument("--supply-pressure-bar", metavar="LIST",
                     help=f"hydraulic tensioner: oil supply pressures [bar, gauge], a comma list (default "
                     f"{job.SUPPLY_PRESSURE / job.BAR:g}), each with every speed")
@@ -124,6 +128,10 @@ def check(ap, args):
     if args.tables:
         args.tables = str(pathlib.Path(args.tables).resolve())
     args.oil_settings = oil_settings(args.drive, pressures, temperatures)
+    args.loads = tuple(job.constant_load(ap, text) for text in args.load)
+    for rpm in args.speeds + list(args.runup_speeds or []):  # (a sprocket without a load: named before the sweep)
+        job.drive_loads(job.run_config(rpm=rpm, drive=args.drive, tables=args.tables, loads=args.loads),
+                        drive_elements(args.drive))
     given = [f"{option} {text}" for option, text in (("--supply-pressure-bar", args.supply_pressure_bar),
                                                     ("--oil-temperature-c", args.oil_temperature_c)) if text]
     checks.print_lines([], job.inert_oil_notes(drive_json(args.drive), given))
@@ -145,7 +153,7 @@ def cases_of(args):
     """(speed-sweep cases, run-up cases) of the options."""
     method = args.method or job.run_config(fidelity=args.fidelity, drive=args.drive).method
     base = Case(rpm=0.0, fidelity=args.fidelity, method=method, solver_step=args.solver_step, cycles=args.cycles,
-                drive=args.drive, tables=args.tables)
+                drive=args.drive, tables=args.tables, loads=getattr(args, "loads", ()))
     settings = getattr(args, "oil_settings", [(None, None)])
     sweep = [dataclasses.replace(base, rpm=r, supply_pressure=p, oil_temperature=T)
              for (p, T), r in itertools.product(settings, args.speeds)]
@@ -163,9 +171,9 @@ def report(name, cases, results, computed, seconds):
     for case, r in zip(cases, results):
         if r["status"] == "ok":
             rows = r["rows"]
-            F = [row["tensioner.F.mean"] for row in rows]
-            what = (f"tensioner F mean {F[0]:.1f} +- {rows[0]['tensioner.F.mean.ci95']:.1f} N" if not case.runup
-                    else f"{len(rows)} engine cycles, tensioner F mean {min(F):.1f}-{max(F):.1f} N")
+            F = [row.get("tensioner.F.mean", math.nan) for row in rows]
+            what = (f"tensioner F mean {F[0]:.1f} +- {rows[0].get('tensioner.F.mean.ci95', math.nan):.1f} N"
+                    if not case.runup else f"{len(rows)} engine cycles, tensioner F mean {min(F):.1f}-{max(F):.1f} N")
             chamber = cycle_stats.CHAMBER + ".mean_bar"
             if chamber in rows[0] and not case.runup:
                 what += f", chamber {rows[0][chamber]:.1f} +- {rows[0][chamber + '.ci95']:.1f} bar"

@@ -13,6 +13,7 @@ The tables shipped in harness/tables/data (and the second engine's in harness/ta
 read with data_dir) are SYNTHESIZED (harness/tables/make_tables.py), not measurements; real
 measurements in the same format are read the same way.
 """
+import dataclasses
 import math
 import pathlib
 import re
@@ -22,7 +23,10 @@ import numpy as np
 
 PERIOD_DEG = 720.0
 ANGLE = "crank_angle_deg"
+SPROCKET_ANGLE = "sprocket_angle_deg"  # a sprocket's own-angle table: degrees of its own rotation, one turn
+SPROCKET_PERIOD_DEG = 360.0
 TIME = "time_s"
+PERIODS = {"angle": PERIOD_DEG, "sprocket": SPROCKET_PERIOD_DEG}  # of the periodic kinds
 TORQUE_COLUMNS = ("camshaftIntake.tau", "camshaftExhaust.tau")
 SPEED_RPM = "crankshaft.speed_rpm"
 SPEED_W = "crankshaft.w"
@@ -64,9 +68,9 @@ def load(path):
     column for malformed input."""
     path = pathlib.Path(path)
     header, names, data, linenos = _read(path)
-    kind = "angle" if names[0] == ANGLE else "time"
-    if kind == "angle":
-        data = _one_cycle(path, data, linenos)
+    kind = {ANGLE: "angle", SPROCKET_ANGLE: "sprocket"}.get(names[0], "time")
+    if kind in PERIODS:
+        data = _one_cycle(path, data, linenos, PERIODS[kind], names[0])
     rpm = _engine_speed(path, header)
     header.pop("_engine_speed_line", None)
     columns = {name: data[:, c] for c, name in enumerate(names) if c > 0}
@@ -111,9 +115,9 @@ def _comment(header, text, lineno):
 
 def _column_names(path, lineno, line, cells):
     """The header line: the column names, checked."""
-    if cells[0] not in (ANGLE, TIME):
+    if cells[0] not in (ANGLE, SPROCKET_ANGLE, TIME):
         raise ValueError(f"{path}:{lineno}: header expected: the first non-comment line must name the "
-                         f"columns, starting with '{ANGLE}' or '{TIME}'; got '{line[:60]}'")
+                         f"columns, starting with '{ANGLE}', '{SPROCKET_ANGLE}' or '{TIME}'; got '{line[:60]}'")
     for c, name in enumerate(cells):
         if not name:
             raise ValueError(f"{path}:{lineno}: column {c + 1} of the header has no name")
@@ -141,16 +145,17 @@ def _row(path, lineno, names, cells, previous):
     return vals
 
 
-def _one_cycle(path, data, linenos):
-    """The rows of an angle table: one engine cycle (a last row at start + 720 repeats the first
-    one and is dropped; a longer span is an error)."""
+def _one_cycle(path, data, linenos, period, column):
+    """The rows of an angle table: one period, an engine cycle (720 deg crank) or a sprocket's turn
+    (360 deg); a last row at start + period repeats the first one and is dropped; a longer span is
+    an error."""
     span = data[-1, 0] - data[0, 0]
-    if abs(span - PERIOD_DEG) <= 1e-9 * PERIOD_DEG:
-        return data[:-1]  # the row at start + 720 repeats the first one (periodic table)
-    if span > PERIOD_DEG:
-        raise ValueError(f"{path}:{linenos[-1]}: column '{ANGLE}': an angle table covers one engine cycle "
-                         f"(less than {PERIOD_DEG:g} deg, or exactly 720 with the first row repeated); "
-                         f"it spans {span:g} deg")
+    if abs(span - period) <= 1e-9 * period:
+        return data[:-1]  # the row at start + period repeats the first one (periodic table)
+    if span > period:
+        what = "one engine cycle" if period == PERIOD_DEG else "one turn of its sprocket"
+        raise ValueError(f"{path}:{linenos[-1]}: column '{column}': the table covers {what} (less than {period:g} "
+                         f"deg, or exactly {period:g} with the first row repeated); it spans {span:g} deg")
     return data
 
 
@@ -181,14 +186,14 @@ def _quantity(header, names):
 
 
 def lookup(table, column, angle_deg):
-    """Periodic (720 deg) linear interpolation of an angle table's column at angle_deg (scalar
-    or array; any real angle)."""
-    if table.kind != "angle":
-        raise ValueError(f"{table.path or 'table'}: lookup by crank angle needs an angle table, this one is "
+    """Periodic linear interpolation of an angle table's column at angle_deg (scalar or array; any
+    real angle): a crank-angle table over 720 deg, a sprocket's own-angle table over 360 deg."""
+    if table.kind not in PERIODS:
+        raise ValueError(f"{table.path or 'table'}: lookup by angle needs an angle table, this one is "
                          f"{table.kind}-based")
     if column not in table.columns:
         raise KeyError(f"{table.path or 'table'}: no column '{column}'; columns: {', '.join(table.columns)}")
-    out = np.interp(np.asarray(angle_deg, float), table.x, table.columns[column], period=PERIOD_DEG)
+    out = np.interp(np.asarray(angle_deg, float), table.x, table.columns[column], period=PERIODS[table.kind])
     return out if np.ndim(out) else float(out)
 
 
@@ -232,7 +237,7 @@ def _for_speed(stem, rpm, data_dir):
     r1, r2 = lower[-1], upper[0]
     t1, t2 = _load_checked(avail[r1], r1), _load_checked(avail[r2], r2)
     for t in (t1, t2):
-        if t.kind != "angle":
+        if t.kind not in PERIODS:
             raise ValueError(f"{t.path}: interpolation between engine speeds needs angle-based tables; this one is "
                              f"time-based (supply a table for exactly {rpm:g} rpm)")
     w = (rpm - r1) / (r2 - r1)
@@ -240,7 +245,12 @@ def _for_speed(stem, rpm, data_dir):
     prov = (f"interpolated linearly in engine speed between {r1:g} rpm ({t1.provenance}) and {r2:g} rpm "
             f"({t2.provenance})")
     header = dict(t1.header, provenance=prov, **{"engine speed": f"{rpm:g} rpm"})
-    return Table("angle", t1.x, cols, rpm, prov, t1.quantity, header, None)
+    return Table(t1.kind, t1.x, cols, rpm, prov, t1.quantity, header, None)
+
+
+def available_speeds(data_dir, stem):
+    """The engine speeds [rpm] of the tables data_dir/<stem>_<n>rpm.csv (default folder DATA_DIR)."""
+    return list(_available(pathlib.Path(data_dir) if data_dir is not None else DATA_DIR, stem))
 
 
 def tabulated_speeds(data_dir=None):
@@ -257,7 +267,8 @@ def speed_problem(rpm, data_dir=None, rpm_option="--rpm", folder_option="--table
     if not folder.is_dir():
         return f"{folder_option} {folder}: no such folder"
     ranges = []
-    for stem in ("camshaft_torque", "crankshaft_speed"):
+    # (the load tables are a drive's sprockets', found and checked with them: sprocket_loads)
+    for stem in ("crankshaft_speed",):
         speeds = sorted(_available(folder, stem))
         if not speeds:
             return (f"{folder_option} {folder}: no {stem}_<n>rpm.csv tables there; their format: "
@@ -277,6 +288,96 @@ def camshaft_torque(rpm, data_dir=None):
 def crankshaft_speed(rpm, data_dir=None):
     """Crankshaft-speed table for an engine speed (exact file or interpolated, see _for_speed)."""
     return _for_speed("crankshaft_speed", rpm, data_dir)
+
+
+@dataclasses.dataclass
+class Load:
+    """The load torque of one loaded sprocket [N m, opposing its rotation], from one of three sources:
+    a constant (--load NAME=VALUE), its own table torque_<name>_<n>rpm.csv (column <name>.tau over
+    sprocket_angle_deg, one turn of the sprocket, the header's `phase:` the table's angle at the
+    sprocket's start; or over crank_angle_deg) or the column <name>.tau of the crank-angle table
+    camshaft_torque_<n>rpm.csv. A crank-angle table is looked up at the crank angle that turns the
+    sprocket by its angle: the sprocket's angle times its ratio (2 for a camshaft)."""
+    name: str
+    source: str                  # for reports: the file and column, or "--load"
+    table: Table | None = None
+    constant: float = 0.0
+    ratio: float = 1.0           # crankshaft degrees per degree of the sprocket (crank-angle tables)
+    phase_deg: float = 0.0       # the own-angle table's angle at the sprocket's start
+
+    def at(self, sprocket_deg):
+        """The torque at the sprocket's angle from its start [deg] (scalar or array)."""
+        if self.table is None:
+            return np.full_like(np.asarray(sprocket_deg, float), self.constant) if np.ndim(sprocket_deg) else self.constant
+        column = self.name + ".tau"
+        if self.table.kind == "sprocket":
+            return lookup(self.table, column, np.asarray(sprocket_deg, float) + self.phase_deg)
+        return lookup(self.table, column, np.asarray(sprocket_deg, float) * self.ratio)
+
+
+def _phase(table):
+    """[deg] the header's `phase: <x> deg` of an own-angle table (0 without one)."""
+    text = table.header.get("phase", "0")
+    m = re.fullmatch(r"([-+0-9.eE]+)\s*(deg)?", text)
+    try:
+        return _number(m.group(1)) if m else _number("x")
+    except ValueError:
+        raise ValueError(f"{table.path}: 'phase:' must be an angle in degrees, e.g. 'phase: 30 deg'; got '{text}'") from None
+
+
+def sprocket_loads(elements, rpm, data_dir=None, constants=None):
+    """{name: Load} of every loaded sprocket of a drive (drive.description.Elements) at an engine
+    speed: its constant (constants, --load), else its own-angle table in data_dir, else the column
+    <name>.tau of the folder's crank-angle camshaft_torque table. A loaded sprocket with none of
+    them, a constant for a sprocket that takes none, and (in a folder the user gave) a table or
+    column that matches no loaded sprocket are ValueErrors naming them and what the drive and the
+    tables have."""
+    folder = pathlib.Path(data_dir) if data_dir is not None else DATA_DIR
+    constants = dict(constants or {})
+    loaded = elements.loaded
+    for name in constants:
+        if name not in loaded:
+            raise ValueError(f"--load {name}: not a loaded sprocket of the drive; its loaded sprockets: "
+                             f"{', '.join(loaded) or 'none'}")
+    crank_table = _for_speed("camshaft_torque", rpm, folder) if _available(folder, "camshaft_torque") else None
+    own = {name: f"torque_{name}" for name in loaded if _available(folder, f"torque_{name}")}
+    if data_dir is not None:
+        _check_unmatched(folder, crank_table, loaded)
+    loads = {}
+    for name in loaded:
+        if name in constants:
+            loads[name] = Load(name, f"--load {name}={constants[name]:g}", constant=float(constants[name]))
+        elif name in own:
+            table = _for_speed(own[name], rpm, folder)
+            loads[name] = Load(name, f"{table.path or own[name]} ({table.provenance})", table, ratio=elements.ratio(name),
+                               phase_deg=_phase(table))
+        elif crank_table is not None and name + ".tau" in crank_table.columns:
+            loads[name] = Load(name, f"{crank_table.path or 'camshaft_torque'}: {name}.tau ({crank_table.provenance})",
+                               crank_table, ratio=elements.ratio(name))
+        else:
+            raise ValueError(f"sprocket '{name}' has no load: no --load {name}=VALUE, no torque_{name}_<n>rpm.csv and "
+                             f"no column {name}.tau in camshaft_torque_<n>rpm.csv in {folder} (the tables there load "
+                             f"{', '.join(table_sprockets(folder, crank_table)) or 'no sprocket'}); a sprocket that "
+                             f"carries no load is an idler (\"motion\": \"idler\" in the drive)")
+    return loads
+
+
+def table_sprockets(folder, crank_table):
+    """The sprocket names the load tables of a folder name: own-angle files and crank-angle columns."""
+    names = [c[:-len(".tau")] for c in (crank_table.columns if crank_table is not None else {}) if c.endswith(".tau")]
+    for p in sorted(pathlib.Path(folder).glob("torque_*_*rpm.csv")):
+        m = re.fullmatch(r"torque_(.+)_[0-9.]+rpm\.csv", p.name)
+        if m and m.group(1) not in names:
+            names.append(m.group(1))
+    return names
+
+
+def _check_unmatched(folder, crank_table, loaded):
+    """A load table or column of a folder the user gave that names no loaded sprocket: ValueError."""
+    for name in table_sprockets(folder, crank_table):
+        if name not in loaded:
+            raise ValueError(f"{folder}: the load table of '{name}' matches no loaded sprocket of the drive (its loaded "
+                             f"sprockets: {', '.join(loaded) or 'none'})")
 
 
 def _omega_column(table):
@@ -336,20 +437,23 @@ def _time_column(table, column, t, what):
     return np.interp(t, tx, table.columns[column])
 
 
-def time_series(rpm, duration, dt, data_dir=None, theta0_deg=0.0, speed_table=None, torque_table=None):
-    """Open-loop input time series at the engine speed rpm from the tables: dict of numpy arrays
-    'time' [s], 'crankshaft.w' [rad/s], 'camshaftIntake.tau', 'camshaftExhaust.tau' [N m] and
-    'crank_angle_deg' (theta(t), not an input of the runner), on t = 0, dt, ..., duration.
+def time_series(rpm, duration, dt, data_dir=None, theta0_deg=0.0, speed_table=None, loads=None, elements=None):
+    """Open-loop input time series at the engine speed rpm from the tables, for a drive
+    (drive.description.Elements; default: the default drive): dict of numpy arrays 'time' [s],
+    '<crank>.w' [rad/s], '<sprocket>.tau' [N m] of every loaded sprocket and 'crank_angle_deg'
+    (theta(t), not an input of the runner), on t = 0, dt, ..., duration.
 
     Angle-based speed table: theta(t) solves d theta/dt = omega(theta) (crank_angle), starting at
     theta0_deg (default 0 = cylinder 1 firing TDC); its mean over time is the harmonic mean of
     the table's speed over the angle, within 0.2 % of its arithmetic mean (the engine speed) at
-    1000 rpm and above. Angle-based torque tables are looked up at theta(t). Time-based tables
-    are used directly from their first sample (linear interpolation to dt); a time-based speed
-    table gives theta(t) by the trapezoidal integral of omega. The tables default to those of
-    camshaft_torque(rpm, data_dir) and crankshaft_speed(rpm, data_dir)."""
+    1000 rpm and above. A time-based speed table gives theta(t) by the trapezoidal integral of
+    omega. The loads (sprocket_loads(elements, rpm, data_dir) unless given) are looked up at each
+    sprocket's angle theta(t) over its ratio, the chain taken as rigid; a time-based load table
+    directly from its first sample."""
+    from ..drive.description import elements as drive_elements
+    elements = elements or drive_elements()
     speed = speed_table if speed_table is not None else crankshaft_speed(rpm, data_dir)
-    torque = torque_table if torque_table is not None else camshaft_torque(rpm, data_dir)
+    loads = loads if loads is not None else sprocket_loads(elements, rpm, data_dir)
     n = int(round(duration / dt))
     t = np.arange(n + 1) * dt
     if speed.kind == "angle":
@@ -360,28 +464,27 @@ def time_series(rpm, duration, dt, data_dir=None, theta0_deg=0.0, speed_table=No
         if col == SPEED_RPM:
             w = w / RPM_PER_RAD_S
         theta = theta0_deg + np.degrees(np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * dt)]))
-    out = {"time": t, "crankshaft.w": w}
-    for c in TORQUE_COLUMNS:
-        if c not in torque.columns:
-            raise ValueError(f"{torque.path or 'table'}: no column '{c}'")
-        out[c] = lookup(torque, c, theta) if torque.kind == "angle" else _time_column(torque, c, t, "torque")
+    out = {"time": t, elements.crank + ".w": w}
+    for name, load in loads.items():
+        timed = load.table is not None and load.table.kind == "time"
+        out[name + ".tau"] = _time_column(load.table, name + ".tau", t, "torque") if timed else \
+            load.at(theta / elements.ratio(name))
     out["crank_angle_deg"] = theta
     return out
 
 
 def write_inputs_csv(path, rpm, duration, dt=2e-5, data_dir=None, theta0_deg=0.0):
-    """Writes the input CSV of chaindrive-run ('#' comments, then
+    """Writes the default drive's input CSV of chaindrive-run ('#' comments, then
     'time,crankshaft.w,camshaftIntake.tau,camshaftExhaust.tau', SI units) from the tables."""
     speed = crankshaft_speed(rpm, data_dir)
-    torque = camshaft_torque(rpm, data_dir)
-    ts = time_series(rpm, duration, dt, theta0_deg=theta0_deg, speed_table=speed, torque_table=torque)
-    cols = ["time", "crankshaft.w"] + list(TORQUE_COLUMNS)
+    ts = time_series(rpm, duration, dt, data_dir, theta0_deg=theta0_deg, speed_table=speed)
+    cols = [c for c in ts if c != "crank_angle_deg"]
     with open(path, "w") as f:
         f.write("# inputs for chaindrive-run: SI units (s, rad/s, N m)\n")
         f.write(f"# crankshaft {rpm:g} rpm and camshaft torques from tables (harness/tables/tables.py), starting at "
                 f"{theta0_deg:g} deg crank angle\n")
         f.write(f"# crankshaft speed: {speed.provenance}\n")
-        f.write(f"# camshaft torque: {torque.provenance}\n")
+        f.write(f"# camshaft torque: {camshaft_torque(rpm, data_dir).provenance}\n")
         f.write(",".join(cols) + "\n")
         np.savetxt(f, np.column_stack([ts[c] for c in cols]), delimiter=",", fmt="%.10g")
     return path

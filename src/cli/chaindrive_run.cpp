@@ -197,6 +197,14 @@ RunArguments parseArguments(Arguments& args) {
 
 // ---- building the run ----
 
+// "a, b" of the sprockets that take a load (motion "free"; not the prescribed one, not an idler).
+std::string loadedSprockets(const DriveDescription& desc) {
+  std::string names;
+  for (const SprocketDesc& sp : desc.sprockets)
+    if (sp.loaded) names += (names.empty() ? "" : ", ") + sp.name;
+  return names.empty() ? "none" : names;
+}
+
 // The inputs: the table of --inputs, else the mean crank speed with its vibration orders and
 // constant load torques on free sprockets.
 std::unique_ptr<InputSignal> makeInputs(const Model& m, const RunArguments& r, double w0) {
@@ -205,8 +213,10 @@ std::unique_ptr<InputSignal> makeInputs(const Model& m, const RunArguments& r, d
   for (const auto& o : r.orders) h->addOrder(o);
   for (const auto& [name, tau] : r.loads) {
     const int k = m.rotorIndex(name);
-    if (k < 0 || !m.rotors[k].isSprocket || m.rotors[k].prescribed)
-      throw std::invalid_argument("--load: '" + name + "' is not a free sprocket of the drive");
+    const int s = m.description.sprocketIndex(name);
+    if (k < 0 || s < 0 || !m.description.sprockets[s].loaded)
+      throw std::invalid_argument("--load: '" + name + "' is not a loaded sprocket of the drive; its loaded sprockets: " +
+                                  loadedSprockets(m.description));
     h->setLoad(k, tau);
   }
   return h;

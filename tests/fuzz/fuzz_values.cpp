@@ -144,7 +144,7 @@ std::optional<std::string> badString(Rng& rng, unsigned vr, const FuzzPaths& pat
 }
 
 ResourceLocation resourceLocation(Rng& rng, const std::string& resourceDir) {
-  switch (rng.below(20)) {
+  switch (rng.below(30)) {  // (a quarter of them not the resources folder: refused)
     case 0: return {std::nullopt, false};
     case 1: return {std::string(), false};
     case 2: return {std::string("file:///nonexistent"), false};

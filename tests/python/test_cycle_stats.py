@@ -1,10 +1,12 @@
 """Cycle statistics (harness/cycle_stats.py): whole engine cycles after the run-in, order
 amplitudes by crank-angle resampling, and confidence intervals that cover as often as they claim."""
+import dataclasses
 import math
 
 import numpy as np
 
-from harness import cycle_stats
+from harness import cycle_stats, paths
+from harness.drive.description import elements
 
 CYCLE = cycle_stats.ENGINE_CYCLE
 
@@ -56,12 +58,41 @@ def test_correlated_cycles_widen_the_interval():
     assert covered / trials >= 0.90
 
 
+def drive(meshing=21, hydraulic=False):
+    """The default drive's elements, with another meshing order or tensioner."""
+    return dataclasses.replace(elements(), crank_teeth=meshing, hydraulic=hydraulic)
+
+
 def test_headline_keys_and_order_keys_per_signal():
-    keys = cycle_stats.headline_keys(21)
+    keys = cycle_stats.headline_keys(drive())
     assert keys[:7] == ["tensioner.F.mean", "tensioner.F.peakToPeak", "chain.Ftight.mean", "chain.Fslack.mean",
                         "tensionGuide.phi.peakToPeak_deg", "camshaftIntake.timing.peakToPeak_degCA",
                         "camshaftExhaust.timing.peakToPeak_degCA"]
     assert cycle_stats.order_keys(keys) == {
         "tensioner.F": [f"tensioner.F.order{k}" for k in (2, 4, 6, 8, 21)],
         "tensionGuide.phi": [f"tensionGuide.phi.order{k}_deg" for k in (2, 4, 6, 8, 21)]}
-    assert len(keys) == 17 and "tensioner.F.order19" in cycle_stats.headline_keys(19)
+    assert len(keys) == 17 and "tensioner.F.order19" in cycle_stats.headline_keys(drive(19))
+
+
+def test_headline_keys_of_other_drives_name_their_own_elements():
+    """A single camshaft's timing, a pump's and an idler's speed fluctuation, no chamber without a
+    hydraulic tensioner, the tension guide by its name (the test drives, tests/drives/)."""
+    root = paths.ROOT / "tests" / "drives"
+    single = cycle_stats.headline_keys(elements(root / "sohc_single_cam.json"))
+    assert "camshaft.timing.peakToPeak_degCA" in single and not [k for k in single if "camshaftIntake" in k]
+    pump = cycle_stats.headline_keys(elements(root / "diesel_pump.json"))
+    assert {"hpPump.w.peakToPeak_rpm", "camshaftIntake.timing.peakToPeak_degCA"} <= set(pump)
+    idler = cycle_stats.headline_keys(elements(root / "idler.json"))
+    assert "idler.w.peakToPeak_rpm" in idler
+    eight = cycle_stats.headline_keys(elements(root / "dohc_8mm.json"))
+    assert {"tensionerArm.phi.peakToPeak_deg", "tensionerArm.phi.order19_deg", "intakeCam.timing.peakToPeak_degCA"} \
+        <= set(eight) and not [k for k in eight if "tensionGuide" in k]
+
+
+def test_timing_follows_the_tooth_ratio():
+    """A sprocket turning exactly by the tooth ratio has no timing deviation: a 28-tooth pump on a
+    21-tooth crankshaft turns by 21/28 of its angle."""
+    e = elements(paths.ROOT / "tests" / "drives" / "diesel_pump.json")
+    phi = np.linspace(0.0, 10.0, 50)
+    d = {"crankshaft.phi": phi, "hpPump.phi": phi * 21.0 / 28.0}
+    assert np.max(np.abs(cycle_stats.timing_deg(d, e, "hpPump"))) < 1e-12

@@ -9,7 +9,7 @@ import pytest
 
 from harness import cycle_stats, job
 from harness.drive import design
-from harness.drive.description import drive_json
+from harness.drive.description import drive_json, elements
 from harness.errors import UserError
 from harness.tables import tables
 from harness_cli import harness, one_error_line
@@ -51,7 +51,8 @@ def short_run(supply_bar=3.0, celsius=90.0):
     """10 ms of the span model at 1000 rpm in closed loop: its record."""
     config = job.run_config(rpm=1000.0, fidelity="span", supply_pressure=supply_bar * 1e5,
                             oil_temperature=celsius + 273.15)
-    inputs = job.table_inputs(tables.camshaft_torque(1000.0), tables.crankshaft_speed(1000.0), config.supply_pressure)
+    inputs = job.table_inputs(job.drive_loads(config, elements()), tables.crankshaft_speed(1000.0), elements(),
+                              config.supply_pressure)
     record, _ = job.run_closed(config, 0.01, inputs, progress=False)
     return record
 
@@ -74,7 +75,7 @@ def test_chamber_statistics_in_the_summary_only_with_the_hydraulic_tensioner(tmp
     assert status == 0, err
     summary = json.loads((tmp_path / "hydraulic" / "summary.json").read_text())
     assert keys <= set(summary) and all(summary[k]["unit"] == "bar" for k in keys)
-    assert list(summary) == cycle_stats.headline_keys(21, hydraulic=True)
+    assert list(summary) == cycle_stats.headline_keys(elements())
     assert summary[CHAMBER + ".min_bar"]["mean"] < summary[CHAMBER + ".mean_bar"]["mean"]
     run = json.loads((tmp_path / "hydraulic" / "run.json").read_text())
     assert run["supplyPressure_Pa"] == 4e5 and run["oilTemperature_K"] == 363.15 and run["tensionerModel"] == "hydraulic"
@@ -84,7 +85,7 @@ def test_chamber_statistics_in_the_summary_only_with_the_hydraulic_tensioner(tmp
                                str(spring_damper_drive), "--oil-temperature-c", "40", "--out", str(tmp_path / "sd"))
     assert status == 0, err
     summary = json.loads((tmp_path / "sd" / "summary.json").read_text())
-    assert not keys & set(summary) and list(summary) == cycle_stats.headline_keys(21)
+    assert not keys & set(summary) and list(summary) == cycle_stats.headline_keys(elements(spring_damper_drive))
     notes = [line for line in out.splitlines() if "no effect" in line]
     assert notes == ["note: --oil-temperature-c 40: no effect, the drive's tensioner is not hydraulic "
                      "(tensioner.model 'spring-damper')"]
@@ -92,11 +93,12 @@ def test_chamber_statistics_in_the_summary_only_with_the_hydraulic_tensioner(tmp
 
 def test_a_zero_chamber_column_is_no_chamber():
     phi = np.linspace(0.0, 3 * cycle_stats.ENGINE_CYCLE, 300)
-    record = {name: np.ones_like(phi) for name in ("tensioner.F", "chain.Ftight", "chain.Fslack", "tensionGuide.phi")}
+    record = {name: np.ones_like(phi) for name in ("tensioner.F", "chain.Ftight", "chain.Fslack", "tensionGuide.phi",
+                                                   "camshaftIntake.phi", "camshaftExhaust.phi")}
     record.update({"crankshaft.phi": phi, CHAMBER: np.zeros_like(phi)})
-    assert not any(k.startswith(CHAMBER) for k in cycle_stats.per_cycle(record, 0, 21))
+    assert not any(k.startswith(CHAMBER) for k in cycle_stats.per_cycle(record, 0, elements()))
     record[CHAMBER] = 3e5 + 1e5 * np.sin(phi)
-    stats = cycle_stats.summarize(cycle_stats.per_cycle(record, 0, 21))
+    stats = cycle_stats.summarize(cycle_stats.per_cycle(record, 0, elements()))
     assert stats[CHAMBER + ".mean_bar"]["mean"] == pytest.approx(3.0, abs=0.01)
     assert stats[CHAMBER + ".min_bar"]["mean"] == pytest.approx(2.0, abs=0.01)
     assert stats[CHAMBER + ".peakToPeak_bar"]["mean"] == pytest.approx(2.0, abs=0.01)

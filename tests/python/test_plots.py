@@ -1,6 +1,7 @@
 """The plots agree with the numbers: the spectra's bars are the summary's order amplitudes, the
 cycle statistics show every headline quantity, the link's revolution lies on the chain path 0..L,
 the run-up's order cuts carry the summary's confidence intervals of blocks of cycles."""
+import dataclasses
 import math
 
 import numpy as np
@@ -8,11 +9,12 @@ import pytest
 
 from harness import cycle_stats
 from harness.cvt import plots as cvt_plots
-from harness.drive.description import geometry
+from harness.drive.description import elements, geometry
 from harness.plots import plots
 from harness.sweep import results
 
 MESHING = 21
+DRIVE = dataclasses.replace(elements(), hydraulic=False)  # the default drive's elements, its record without a chamber
 RUN_IN, COUNTED = 1, 4
 
 
@@ -37,9 +39,9 @@ def synthetic_record(cycles=6, samples_per_cycle=800, seed=3):
 
 def test_spectra_bars_are_the_summary_amplitudes(tmp_path):
     d = synthetic_record()
-    summary = cycle_stats.summarize(cycle_stats.per_cycle(d, RUN_IN, MESHING, COUNTED))
+    summary = cycle_stats.summarize(cycle_stats.per_cycle(d, RUN_IN, DRIVE, COUNTED))
     spans = cycle_stats.counted_spans(d["crankshaft.phi"], RUN_IN, COUNTED)
-    drawn = plots.spectra(tmp_path / "spectra.png", d, spans, MESHING, "synthetic")
+    drawn = plots.spectra(tmp_path / "spectra.png", d, spans, DRIVE, "synthetic")
     for name, keys in cycle_stats.order_keys(list(summary)).items():
         orders, heights = drawn[name]
         for order, key in zip(list(cycle_stats.ORDERS) + [MESHING], keys):
@@ -51,10 +53,10 @@ def test_spectra_bars_are_the_summary_amplitudes(tmp_path):
 
 def test_cycle_statistics_show_every_headline_quantity(tmp_path):
     d = synthetic_record()
-    per_cycle = cycle_stats.per_cycle(d, RUN_IN, MESHING, COUNTED)
+    per_cycle = cycle_stats.per_cycle(d, RUN_IN, DRIVE, COUNTED)
     drawn = plots.cycle_statistics(tmp_path / "cycle_statistics.png", per_cycle, cycle_stats.summarize(per_cycle),
                                    "synthetic")
-    assert sorted(drawn) == sorted(cycle_stats.headline_keys(MESHING)) and len(drawn) == 17
+    assert sorted(drawn) == sorted(cycle_stats.headline_keys(DRIVE)) and len(drawn) == 17
 
 
 def link_along_the_path(g, start, revolutions, samples=3000):

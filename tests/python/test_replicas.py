@@ -8,6 +8,7 @@ import pytest
 from scipy import stats
 
 from harness import job, replicas
+from harness.drive.description import elements
 from harness.tables import tables
 from harness.bench import realtime
 from harness_cli import harness, one_error_line
@@ -51,9 +52,10 @@ def test_replica_k_perturbs_the_crankshaft_speed_by_k_parts_in_a_billion(tmp_pat
     r2 = replicas.replica_config(config, 2)
     assert r2.speed_perturbation == pytest.approx(2e-9) and r2.replicas == 1 and r2.out == tmp_path / "replica2"
     assert replicas.replica_config(config, 0).speed_perturbation == 0.0
-    torque, speed = tables.camshaft_torque(3000.0), tables.crankshaft_speed(3000.0)
-    plain = job.table_inputs(torque, speed)(0.0, 90.0, 30.0, 40.0)
-    perturbed = job.table_inputs(torque, speed, speed_factor=1.0 + 2e-9)(0.0, 90.0, 30.0, 40.0)
+    loads, speed, drive = job.drive_loads(config, elements()), tables.crankshaft_speed(3000.0), elements()
+    angles = {"crankshaft": 90.0, "camshaftIntake": 15.0, "camshaftExhaust": 20.0}
+    plain = job.table_inputs(loads, speed, drive)(0.0, angles)
+    perturbed = job.table_inputs(loads, speed, drive, speed_factor=1.0 + 2e-9)(0.0, angles)
     assert perturbed["crankshaft.w"] == plain["crankshaft.w"] * (1.0 + 2e-9) != plain["crankshaft.w"]
     assert {k: v for k, v in perturbed.items() if k != "crankshaft.w"} == \
         {k: v for k, v in plain.items() if k != "crankshaft.w"}

@@ -5,7 +5,7 @@ import json
 import pathlib
 
 from ... import runs
-from ...drive.description import meshing_order
+from ...drive.description import elements
 from ...job import run_in_cycles
 from ...tables import tables
 from ..methods import default_drive_json, run_solver
@@ -97,7 +97,7 @@ class Context:
         self.timeout = 120.0 if self.quick else args.timeout
         self.verlet_steps = args.verlet_steps
         self.max_cycles = 2 if self.quick else args.max_cycles
-        self.mesh = meshing_order(default_drive_json())
+        self.mesh = elements(default_drive_json())  # (the default drive's elements: the cycle statistics')
         self.log_lines = []
         self.states = {}  # setting id -> (start-state files, method that made them)
         longest = max(self.pairs(s) - 1 + max(self.cycles(s), self.max_cycles) for s in settings)

@@ -5,6 +5,7 @@ import shutil
 import subprocess
 import threading
 import xml.etree.ElementTree as ET
+import zipfile
 
 import numpy as np
 import pytest
@@ -12,7 +13,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
 from harness import defaults, job, paths
-from harness.fmu import fmu
+from harness.fmu import export, fmu
 
 W2000 = fmu.rpm_to_rad_s(2000.0)
 INPUTS = {"crankshaft.w": W2000, "camshaftIntake.tau": 3.0, "camshaftExhaust.tau": 2.0}
@@ -48,15 +49,19 @@ def test_binary_exports_only_fmi2_and_links_only_libc_libm(binary):
     assert all(any(l.startswith(a) for a in allowed) for l in libs), libs
 
 
-@pytest.mark.parametrize("description, header", [("modelDescription.xml", "chaindrive"), ("CVTChain.xml", "cvt")])
-def test_model_description_and_glue_agree(description, header):
-    """The model description is the single source; the adapter's <adapter>_variables.h mirrors it (both FMUs)."""
-    root = ET.parse(paths.ROOT / "modelDescription" / description).getroot()
+def model_description_variables(root):
     xml = {}
     for sv in root.iter("ScalarVariable"):
         typ = [c for c in sv if c.tag in ("Real", "Integer", "Boolean", "String")][0]
         xml[sv.get("name")] = (int(sv.get("valueReference")), typ.tag, sv.get("causality"), typ.get("start", ""))
-    header = (paths.ROOT / "fmu" / header / f"{header}_variables.h").read_text()
+    return xml
+
+
+def test_cvt_model_description_and_glue_agree():
+    """CVTChain's model description is the single source; its adapter's cvt_variables.h mirrors it."""
+    root = ET.parse(paths.ROOT / "modelDescription" / "CVTChain.xml").getroot()
+    xml = model_description_variables(root)
+    header = (paths.ROOT / "fmu" / "cvt" / "cvt_variables.h").read_text()
     vrs = dict(re.findall(r"\b(k\w+) = (\d+),", header))
     glue = {}
     for name, vr, typ, caus, start in re.findall(
@@ -65,7 +70,15 @@ def test_model_description_and_glue_agree(description, header):
     assert glue == xml
     guid = re.search(r'kGuid = "([^"]+)"', header).group(1)
     assert guid == root.get("guid")
-    # outputs of ModelStructure: exactly the outputs, in order
+
+
+@pytest.mark.parametrize("description", ["ChainDrive", "CVTChain"])
+def test_model_structure_lists_exactly_the_outputs(description):
+    """ModelStructure's outputs: exactly the outputs, in order (ChainDrive's generated from its drive)."""
+    if description == "ChainDrive":
+        root = ET.fromstring(zipfile.ZipFile(fmu.fmu_path()).read("modelDescription.xml"))
+    else:
+        root = ET.parse(paths.ROOT / "modelDescription" / f"{description}.xml").getroot()
     outputs = [i + 1 for i, sv in enumerate(root.iter("ScalarVariable")) if sv.get("causality") == "output"]
     listed = [int(u.get("index")) for u in root.find("ModelStructure").find("Outputs")]
     assert listed == outputs
@@ -343,14 +356,15 @@ def test_contact_method_parameter_selects_time_stepping():
 
 
 SPRING_DAMPER_DRIVE = paths.ROOT / "tests" / "data" / "drives" / "default_drive_spring_damper.json"
+SPRING_DAMPER_INPUTS = {"crankshaft.w": W2000, "camshaftIntake.tau": 3.0, "camshaftExhaust.tau": 2.0}
 
 
 def test_event_driven_storm_is_a_discard_with_the_reason():
     """The event-driven method meets a runaway event rate on the drive (a result of the stability
     study; it runs the drive with the spring-damper law, not integrating a hydraulic chamber): the FMU
     reports it as fmi2Discard naming the rate, and the state can be restored."""
-    s = fmu.Slave("ed", parameters={"contact.method": "event-driven", "driveFile": str(SPRING_DAMPER_DRIVE)})
-    s.initialize(inputs=INPUTS)
+    s = fmu.Slave("ed", fmu=export.fmu_for(SPRING_DAMPER_DRIVE), parameters={"contact.method": "event-driven"})
+    s.initialize(inputs=SPRING_DAMPER_INPUTS)
     state = s.slave.getFMUState()
     with pytest.raises(FMICallException) as e:
         for k in range(10):

@@ -14,6 +14,7 @@ from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
 from harness import paths
+from harness.errors import UserError
 from harness.fmu import fmu
 from harness.package import compare, inspect
 
@@ -117,19 +118,17 @@ def test_win64_binary_reads_the_resources_a_windows_uri_names(unpacked, master, 
     run = compare.run_timing(fmu_dir, 0.0005)
     windows = compare.replay_on_windows(master, fmu_dir, run, work)
     assert not [m for m in windows.log if "no resources folder" in m], windows.log
-    expected = rf"0 logEvents drive: Z:/.*/{folder}/ChainDrive/resources/default_drive\.json$"
+    expected = rf"0 logEvents drive: Z:/.*/{folder}/ChainDrive/resources/drive\.json$"
     assert [m for m in windows.log if re.match(expected, m)], windows.log
 
 
-def test_a_missing_resources_folder_is_a_logged_warning(unpacked, work):
+def test_a_missing_resources_folder_is_an_error(unpacked, work):
+    """The FMU's drive and interface are in its resources: without them fmi2Instantiate refuses,
+    naming the folder, instead of running another drive."""
     copy = work / "no-resources"
     shutil.copytree(unpacked["ChainDrive"], copy, ignore=shutil.ignore_patterns("resources", "sources"))
-    s = fmu.Slave("no-resources", fmu=copy)
-    s.initialize()
-    s.close()
-    warnings = [m for status, _, m in s.messages if status == 1]  # fmi2Warning
-    assert [m for m in warnings if "no resources folder" in m and "default drive built into the binary" in m], \
-        s.messages
+    with pytest.raises(UserError, match="has no interface.json"):
+        fmu.Slave("no-resources", fmu=copy)
 
 
 @pytest.mark.parametrize("method,duration", [(None, 0.030), ("fixed-verlet", 0.030),

@@ -1,14 +1,16 @@
 """The fidelity ladder's logic (harness/study/ladder.py) on synthetic summaries: tolerances parsed
 and refused, quantities within and outside their tolerance, the orders chosen by the 10 % rule,
 differences in dB, and the recommendation of the cheapest fidelity that meets all."""
+import dataclasses
 import math
 
 import pytest
 
 from harness import cycle_stats
+from harness.drive.description import elements
 from harness.study import ladder
 
-KEYS = cycle_stats.headline_keys(21)
+KEYS = cycle_stats.headline_keys(dataclasses.replace(elements(), hydraulic=False))
 
 
 def summary(**means):

@@ -122,23 +122,25 @@ def test_run_up_inputs_follow_the_tables_speed_dependence_and_hold_beyond_them()
     from harness import job
     from harness.sweep.cases import runup_inputs
     from harness.tables import tables
-    case = Case(rpm=800.0, rpm_end=6500.0, ramp_s=1.0)
-    inputs = runup_inputs(case, ramp_start=0.2)
-    at = {r: job.table_inputs(tables.camshaft_torque(r), tables.crankshaft_speed(r)) for r in (1000.0, 2000.0, 3000.0, 6000.0)}
-    angles = (0.0, 123.0, 400.0)
+    from harness.drive.description import elements
+    case, drive = Case(rpm=800.0, rpm_end=6500.0, ramp_s=1.0), elements()
+    inputs = runup_inputs(case, 0.2, drive)
+    at = {r: job.table_inputs(job.drive_loads(job.run_config(rpm=r), drive), tables.crankshaft_speed(r), drive)
+          for r in (1000.0, 2000.0, 3000.0, 6000.0)}
 
     def rad_s(rpm):
         return rpm * 2.0 * math.pi / 60.0
-    for crank in angles:
-        held = inputs(0.1, crank, crank, crank)           # run-in at 800 rpm: the 1000 rpm table's shape
-        ref = at[1000.0](0.1, crank, crank, crank)
+    for angle in (0.0, 123.0, 400.0):
+        crank = {"crankshaft": angle, "camshaftIntake": 0.5 * angle, "camshaftExhaust": 0.5 * angle}
+        held = inputs(0.1, crank)           # run-in at 800 rpm: the 1000 rpm table's shape
+        ref = at[1000.0](0.1, crank)
         assert held["camshaftIntake.tau"] == ref["camshaftIntake.tau"]
         assert held["crankshaft.w"] == pytest.approx(ref["crankshaft.w"] * 800.0 / 1000.0, rel=1e-12)
-        mid = inputs(0.2 + 1700.0 / 5700.0, crank, crank, crank)  # 2500 rpm: halfway between two tables
-        lo, hi = at[2000.0](0.0, crank, crank, crank), at[3000.0](0.0, crank, crank, crank)
+        mid = inputs(0.2 + 1700.0 / 5700.0, crank)  # 2500 rpm: halfway between two tables
+        lo, hi = at[2000.0](0.0, crank), at[3000.0](0.0, crank)
         assert mid["camshaftExhaust.tau"] == pytest.approx(0.5 * (lo["camshaftExhaust.tau"] + hi["camshaftExhaust.tau"]))
         assert mid["crankshaft.w"] == pytest.approx(rad_s(2500.0) * 0.5 * (lo["crankshaft.w"] / rad_s(2000.0)
                                                                           + hi["crankshaft.w"] / rad_s(3000.0)))
-        top = inputs(5.0, crank, crank, crank)             # after the ramp: 6500 rpm, the 6000 rpm table's shape
-        assert top["camshaftIntake.tau"] == at[6000.0](0.0, crank, crank, crank)["camshaftIntake.tau"]
-        assert top["crankshaft.w"] == pytest.approx(at[6000.0](0.0, crank, crank, crank)["crankshaft.w"] * 6500.0 / 6000.0)
+        top = inputs(5.0, crank)             # after the ramp: 6500 rpm, the 6000 rpm table's shape
+        assert top["camshaftIntake.tau"] == at[6000.0](0.0, crank)["camshaftIntake.tau"]
+        assert top["crankshaft.w"] == pytest.approx(at[6000.0](0.0, crank)["crankshaft.w"] * 6500.0 / 6000.0)

@@ -260,7 +260,7 @@ def test_loader_accepts_time_based_and_real_looking_tables(tmp_path):
     ("time_s,a,b\n0,1,2\n1,2\n", r"bad\.csv:3: expected 3 values"),
     ("# engine speed: fast\ncrank_angle_deg,a\n0,1\n1,2\n", r"bad\.csv:1: 'engine speed:' must be a positive number"),
     ("angle,a\n0,1\n1,2\n", r"bad\.csv:1: header expected"),
-    ("crank_angle_deg,a\n0,1\n800,2\n", r"bad\.csv:3: column 'crank_angle_deg': an angle table covers one"),
+    ("crank_angle_deg,a\n0,1\n800,2\n", r"bad\.csv:3: column 'crank_angle_deg': the table covers one engine cycle"),
     ("crank_angle_deg,a,a\n0,1,1\n1,2,2\n", r"bad\.csv:1: column 'a' appears twice"),
 ])
 def test_loader_rejects_malformed_files_naming_file_line_and_column(tmp_path, body, match):
