@@ -186,7 +186,8 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=No
     duration [s]; or None: until the run-in (a runin.RunIn, fed each engine cycle's tensioner
     stroke) has ended and config.cycles counted cycles followed. fmu_file: the FMU (a file or an
     unpacked folder; default the drive's: export.fmu_for). Returns (record, CPU seconds spent inside
-    each fmi2DoStep)."""
+    each fmi2DoStep). A step the FMU refuses (a blow-up: fmi2Discard) raises RunFailed with the
+    record up to the failure."""
     s = fmu.Slave("chaindrive", fmu=fmu_file or export.fmu_for(config.drive), parameters=parameters_of(config))
     step = config.step
     angles = [f"{name}.phi" for name in inputs.angles]
@@ -197,21 +198,34 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=No
     watch = CycleWatch(names, angles[0], run_in, config.cycles) if duration is None else None
     total = duration or duration_of(dataclasses.replace(config, run_in=run_in_cycles(config.rpm)))
     prog = Progress(total, "closed loop") if progress else None
-    k = 0
-    while (k < int(round(duration / step))) if duration is not None else not watch.done(rows):
-        o = s.get(angles)
-        u = inputs(k * step, {name: math.degrees(o[a]) for name, a in zip(inputs.angles, angles)})
-        s.step(step, inputs=u, t=k * step)
-        v = s.get(names)
-        rows.append([(k + 1) * step] + [v[x] for x in names] + [u[n] for n in applied])
-        k += 1
-        if prog:
-            prog.update(min((k * step), total))
-    if prog:
-        prog.done()
-    s.close()
     cols = ["time"] + names + [f"input.{n}" for n in applied]
+    k = 0
+    try:
+        while (k < int(round(duration / step))) if duration is not None else not watch.done(rows):
+            o = s.get(angles)
+            u = inputs(k * step, {name: math.degrees(o[a]) for name, a in zip(inputs.angles, angles)})
+            s.step(step, inputs=u, t=k * step)
+            v = s.get(names)
+            rows.append([(k + 1) * step] + [v[x] for x in names] + [u[n] for n in applied])
+            k += 1
+            if prog:
+                prog.update(min((k * step), total))
+    except fmu.Refusal as e:
+        raise RunFailed(str(e), {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}) from None
+    finally:
+        if prog:
+            prog.done()
+        s.close()
     return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
+
+
+class RunFailed(UserError):
+    """A step the FMU refused in the master loop (a blow-up): the FMU's reason, and the record up to
+    the last successful step (written by the main job before it stops)."""
+
+    def __init__(self, message, record):
+        super().__init__(message)
+        self.record = record
 
 
 class CycleWatch:
@@ -223,6 +237,8 @@ class CycleWatch:
         self.stroke = 1 + names.index(runin.SIGNAL) if runin.SIGNAL in names else None
         self.run_in, self.cycles = run_in, cycles
         self.start, self.next = 0, cycle_stats.ENGINE_CYCLE  # the current cycle's first row, its end angle
+        if run_in.ended:  # (a fixed run-in: only the end of the counted cycles to wait for)
+            self.next = (run_in.result.cycles + cycles) * cycle_stats.ENGINE_CYCLE
 
     def done(self, rows):
         phi = rows[-1][self.phi]
@@ -466,6 +482,7 @@ def duration_of(config):
 
 
 MAX_RUN_IN_TIME = 1.5  # [s] the longest run-in waiting for the tensioner to settle (harness/runin.py)
+OPEN_RUN_IN_EXTRA = 2 * runin.WINDOW  # engine cycles the open loop runs beyond the least run-in, to find it in
 
 
 def run_in_of(config):
@@ -509,12 +526,11 @@ def simulate(config, progress=True):
         inputs = table_inputs(loads, speed, elements, config.supply_pressure, 1.0 + config.speed_perturbation)
         d, step_cpus = run_closed(config, None, inputs, progress, fmu_file, run_in)
         settling = run_in.result
-    else:
-        fixed = dataclasses.replace(config, run_in=run_in.minimum)
-        d, step_cpus = run_open(config, duration_of(fixed), loads, speed, elements, fmu_file)
-        found = runin.detect(d, elements.crank, run_in.minimum, len(cycle_stats.cycle_spans(d[elements.crank + ".phi"], 0)))
-        settling = runin.Settling(run_in.minimum, found.settled and found.cycles <= run_in.minimum, found.drift,
-                                  found.tolerance)
+    else:  # (the run-in found afterwards, within the OPEN_RUN_IN_EXTRA cycles the open loop runs more)
+        longest = run_in.maximum if run_in.ended else run_in.minimum + OPEN_RUN_IN_EXTRA
+        d, step_cpus = run_open(config, duration_of(dataclasses.replace(config, run_in=longest)), loads, speed,
+                                elements, fmu_file)
+        settling = run_in.result or runin.detect(d, elements.crank, run_in.minimum, longest)
     return SceneRun(d, settling, float(d["time"][-1]), time.process_time() - cpu0, step_cpus, elements,
                     {name: load.source for name, load in loads.items()})
 
@@ -567,8 +583,13 @@ def run(config):
     """The main job of the timing drive: the run, its outputs, statistics and plots in config.out."""
     out = config.out
     out.mkdir(parents=True, exist_ok=True)
-    scene_run = simulate(config)
     csv = out / "outputs.csv"
+    try:
+        scene_run = simulate(config)
+    except RunFailed as failure:
+        write_csv(csv, failure.record)
+        raise UserError(f"{failure} (every output up to the failure, {failure.record['time'][-1] * 1e3:.1f} ms: "
+                        f"{csv})") from None
     write_csv(csv, scene_run.record)
     per_cycle, summary = cycle_statistics(config, scene_run)
     d = scene_run.record

@@ -48,10 +48,12 @@ def check(ap, args):
 
 
 def config_of(args, rpm, fidelity, step):
+    """The run of a fidelity at one speed, its run-in fixed (the replays run the same duration)."""
+    run_in = job.run_in_cycles(rpm)
     if fidelity == "link":
         return job.run_config(rpm=rpm, cycles=args.cycles, step=step, method=job.REALTIME_METHOD,
-                              solver_step=job.REALTIME_STEP)
-    return job.run_config(rpm=rpm, cycles=args.cycles, step=step, fidelity=fidelity)
+                              solver_step=job.REALTIME_STEP, run_in=run_in)
+    return job.run_config(rpm=rpm, cycles=args.cycles, step=step, fidelity=fidelity, run_in=run_in)
 
 
 class Replayer:

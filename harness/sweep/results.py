@@ -150,7 +150,7 @@ def block_intervals(rpm, values, block=RUNUP_BLOCK):
 
 def order_cut_keys(name, meshing):
     """{order: the headline key of its amplitude} of an output (harness/cycle_stats.py's keys)."""
-    suffix = next(s for n, _, _, s in cycle_stats.ORDER_SIGNALS if n == name)
+    suffix = "_deg" if name.endswith(".phi") else ""  # (an angle's amplitudes in deg: cycle_stats.order_signals)
     return {k: f"{name}.order{k:g}{suffix}" for k in list(CUT_ORDERS) + [meshing]}
 
 

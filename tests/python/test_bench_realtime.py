@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pytest
 
-from harness import cli, job
+from harness import cli, job, runin
 from harness.bench import realtime
 
 
@@ -17,7 +17,8 @@ def parse(argv):
 
 
 def scene_run(step_cpus, duration, record=None):
-    return job.SceneRun(record=record or {}, run_in=0, duration=duration, cpu=1.0, step_cpus=step_cpus)
+    return job.SceneRun(record=record or {}, settling=runin.Settling(0, True), duration=duration, cpu=1.0,
+                        step_cpus=step_cpus)
 
 
 def test_timing_leaves_out_the_first_step_and_gives_the_spread():

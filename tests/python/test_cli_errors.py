@@ -35,14 +35,25 @@ def test_missing_tables_folder_is_named(tmp_path):
 
 def test_tables_folder_without_tables_is_named(tmp_path):
     line = one_error_line(*harness("run", "--tables", str(tmp_path), "--out", str(tmp_path))[::2])
-    assert f"--tables {tmp_path}: no camshaft_torque_<n>rpm.csv tables there" in line, line
+    assert f"--tables {tmp_path}: no crankshaft_speed_<n>rpm.csv tables there" in line, line
 
 
-def test_misspelled_drive_field_gives_the_fmus_reason(tmp_path):
+def test_misspelled_drive_field_is_named_by_its_export(tmp_path):
     drive = misspelled_drive(tmp_path)
     line = one_error_line(*harness("run", "--drive", str(drive), "--cycles", "2", "--out", str(tmp_path))[::2])
-    assert line.startswith("error: ChainDrive.fmu: ") and "fmi2ExitInitializationMode" in line, line
+    assert line.startswith("error: chaindrive-info: "), line
     assert "chain.pitchh: unknown key" in line and "chain.pitch: missing" in line, line
+
+
+def test_a_blow_up_names_the_step_and_keeps_the_outputs_up_to_it(tmp_path):
+    """A step far beyond the stable one: one error line with the FMU's reason, and outputs.csv
+    holding every step up to the failure."""
+    line = one_error_line(*harness("run", "--rpm", "6000", "--solver-step", "2e-5", "--cycles", "2", "--run-in", "1",
+                                   "--out", str(tmp_path))[::2])
+    assert "fmi2DoStep" in line and "fmi2Discard" in line and "every output up to the failure" in line, line
+    with open(tmp_path / "outputs.csv") as f:
+        rows = f.read().splitlines()
+    assert rows[0].startswith("time,") and len(rows) >= 2
 
 
 def test_solver_step_refused_by_the_fmu_is_written_with_its_unit(tmp_path):
