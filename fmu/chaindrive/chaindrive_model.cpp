@@ -1,6 +1,7 @@
 #include "chaindrive_model.h"
 
 #include <cmath>
+#include <optional>
 
 #include "description/drive_description.h"
 #include "interface/drive_interface.h"
@@ -176,13 +177,15 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
   opt.fidelity = choices_.fidelity;
   opt.contactMethod = choices_.contacts;
   // solver.method empty and solver.step 0: the fidelity's own (run/defaults.h: the row of runs
-  // with joints with clearance or rigid contacts, or not), as the command-line tools and the
-  // harness take them
+  // with joints with clearance or rigid contacts, or not), the step the drive's own
+  // (run/drive_defaults.h), as the command-line tools and the harness take them
   const SolverDefaults& own =
-      model_ ? ownSolverDefaults(*model_, opt) : solverDefaults(Scene::TimingDrive, opt.fidelity);
+      model_ ? ownTableRow(*model_, opt) : solverDefaults(Scene::TimingDrive, opt.fidelity);
   opt.integrator.method = choices_.method.value_or(own.method);
   opt.integrator.adaptive.rtol = params_.tolerance;
-  opt.integrator.fixed.step = params_.step > 0.0 ? params_.step : defaultStep(own, opt.integrator.method);
+  opt.integrator.fixed.step = params_.step > 0.0 ? params_.step
+                              : model_          ? defaultStepChoice(*model_, opt, opt.integrator.method).step
+                                                : defaultStep(own, opt.integrator.method);
   opt.integrator.newmark.gamma = params_.newmarkGamma;
   opt.integrator.adaptive.stopAtOutputs = true;
   opt.jointModel = choices_.joints;
@@ -193,7 +196,14 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
 
 // The simulation of model_ with the solver parameters, at its start state on the time grid.
 void ChainDriveModel::startSimulation() {
-  makeSimulation(simulationOptions());
+  const SimulationOptions opt = simulationOptions();
+  makeSimulation(opt);
+  // the step and why (solver.step 0: the drive's own, run/drive_defaults.h)
+  if (sim_->integratorFixedStep() > 0.0)
+    host_.log(fmi2OK, "logEvents", "solver: %s, %s", choiceName(opt.integrator.method),
+              defaultStepChoice(*model_, opt, opt.integrator.method,
+                                params_.step > 0.0 ? std::optional<double>(params_.step) : std::nullopt)
+                  .reason.c_str());
   sim_->start(host_.time());
   // what the start state solve found
   const PreloadReport& rep = sim_->preloadReport();

@@ -14,6 +14,8 @@
 #include "description/fields.h"
 #include "interface/fmu_files.h"
 #include "run/defaults.h"
+#include "run/drive_defaults.h"
+#include "run/simulation.h"
 #include "span/calibration_cache.h"
 
 using namespace chaindrive;
@@ -24,7 +26,8 @@ constexpr const char* kTool = "chaindrive-info";
 
 void usage() {
   std::puts(
-      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--calibrate] [--quiet] | --defaults\n"
+      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--calibrate] [--quiet]\n"
+      "       chaindrive-info --defaults [--drive FILE]\n"
       "       chaindrive-info [--drive FILE] --interface | --fmu-files DIR\n"
       "  Assembles the drive (default: the embedded default drive), prints the closure and pose\n"
       "  report, and optionally writes the geometry for plotting.\n"
@@ -32,7 +35,9 @@ void usage() {
       "  calibration from the cache, src/span/calibration_cache.h) and prints what it identified, its\n"
       "  cost and its cache file.\n"
       "  --defaults prints the solver defaults of every entry point per scene and fidelity as JSON\n"
-      "  (the one table, src/run/defaults.h: method, step [s], tolerance).\n"
+      "  (the one table, src/run/defaults.h: method, step [s], tolerance); the timing rows with the\n"
+      "  steps of the drive (default: the default drive's, the table's), each with its stability\n"
+      "  estimate and the reason (src/run/drive_defaults.h), and under \"drive\" its name and own row.\n"
       "  --interface prints the drive's FMU interface as JSON (src/interface/: every variable with\n"
       "  its value reference, type, unit and description, the model identifier and GUID).\n"
       "  --fmu-files writes the drive's FMU files but the binaries: DIR/modelDescription.xml and\n"
@@ -192,17 +197,49 @@ void printCalibration(const Model& m) {
   std::printf("calibration: this call took %.2f s CPU (%s)\n", cpu, fromCache ? "read from the cache" : "identified");
 }
 
-// The defaults table as {scene: {fidelity: {method, step_s, tolerance}}}, a row for runs with
-// joints with clearance or rigid contacts under its fidelity's as "clearanceOrRigid".
-void printDefaults() {
+// A row as JSON: method, step_s, tolerance; a timing row with the drive's step adds its division
+// of kStepInterval, the stability estimate [s], the default drive's margin and the reason.
+nlohmann::json rowJson(const DriveRow& r) {
+  nlohmann::json j = {{"method", choiceName(r.row.method)}, {"step_s", r.row.step}, {"tolerance", r.row.tolerance}};
+  if (r.divisions > 0) {
+    j["divisions"] = r.divisions;
+    j["estimate_s"] = r.estimate;
+    j["margin"] = r.margin;
+    j["limitedBy"] = r.limitedBy;
+  }
+  j["reason"] = r.reason;
+  return j;
+}
+
+// The defaults table as {scene: {fidelity: {method, step_s, tolerance, ...}}}, a row for runs with
+// joints with clearance or rigid contacts under its fidelity's as "clearanceOrRigid"; the timing
+// rows with the steps of the drive (the default drive's: the table's own), and under "drive" its
+// name, whether its joints have clearance or its contacts are rigid, and its own link row's key.
+// A drive without a span model has no span row (its reason under "drive").
+void printDefaults(const InfoArguments& a) {
+  const DriveDescription desc = cli::loadDrive(a.drive);
+  const Model m = assemble(desc);
   nlohmann::json table = nlohmann::json::object();
+  nlohmann::json drive = {{"name", m.name}};
   for (const bool clearanceOrRigid : {false, true})
     for (const SolverDefaults& row : kSolverDefaults) {
       if (row.clearanceOrRigid != clearanceOrRigid) continue;
+      DriveRow r;
+      try {
+        r = driveRow(m, row);
+      } catch (const DescriptionError& e) {  // (no span model)
+        drive["noSpanModel"] = e.what();
+        continue;
+      }
       nlohmann::json& at = table[choiceName(row.scene)][choiceName(row.fidelity)];
-      (clearanceOrRigid ? at["clearanceOrRigid"] : at) = {
-          {"method", choiceName(row.method)}, {"step_s", row.step}, {"tolerance", row.tolerance}};
+      (clearanceOrRigid ? at["clearanceOrRigid"] : at) = rowJson(r);
     }
+  SimulationOptions opt;
+  drive["clearanceOrRigid"] = ownTableRow(m, opt).clearanceOrRigid;
+  if (!a.drive.empty()) {
+    drive["file"] = a.drive;
+    table["drive"] = drive;
+  }
   std::printf("%s\n", table.dump(1).c_str());
 }
 
@@ -221,7 +258,7 @@ int writeInterface(const InfoArguments& r) {
 
 int run(const InfoArguments& r) {
   if (r.defaults) {
-    printDefaults();
+    printDefaults(r);
     return 0;
   }
   if (r.interface || !r.fmuFiles.empty()) return writeInterface(r);

@@ -57,6 +57,7 @@ void usage() {
       "  --rtol X                relative tolerance of adaptive integrators and of the event-driven\n"
       "                          method (default %g)\n"
       "  --step S                step of fixed-step integrators and of time stepping [s] (default: the\n"
+      "                          drive's own, from its stability estimate; the default drive's: the\n"
       "                          fidelity's, link %g, span %g); they step on the grid t0 + k S\n"
       "  --newmark-gamma G       fixed-newmark: 0.5 keeps every mode's amplitude, up to 1 damps the\n"
       "                          modes the step cannot resolve (default 0.5)\n"
@@ -82,8 +83,9 @@ void usage() {
       "  --save-state FILE       save the final state (for --initial-state)\n"
       "  --summary FILE.json     write the run's figures (CPU time, counters, failure and its kind)\n"
       "  --quiet                 print the summary only\n"
-      "The defaults of method, step and tolerance are the FMU's (chaindrive-info --defaults; a drive\n"
-      "whose joints have clearance, or rigid contacts: %s at %g s).\n",
+      "The defaults of method, step and tolerance are the FMU's (chaindrive-info --defaults [--drive\n"
+      "FILE]; a drive whose joints have clearance, or rigid contacts: %s, the default drive at %g s).\n"
+      "The run prints its step and why; a blow-up names the step it ran with and the step to try.\n",
       names.c_str(), choiceName(link.method), link.tolerance, link.step, span.step, choiceName(clearance.method),
       clearance.step);
 }
@@ -97,6 +99,7 @@ struct RunArguments {
   // given on the command line; otherwise the fidelity's defaults (run/defaults.h)
   std::optional<IntegratorMethod> method;
   std::optional<double> step, rtol;
+  std::string stepReason;  // why the run has its step (run/drive_defaults.h)
   std::vector<std::pair<std::string, double>> loads;
   std::vector<HarmonicInputs::Order> orders;
   bool quiet = false;
@@ -168,12 +171,23 @@ const Option kOptions[] = {
 // clang-format on
 
 // The fidelity's solver defaults (run/defaults.h: the row of runs with joints with clearance or
-// rigid contacts, or not) where the command line gave no method, step or tolerance.
+// rigid contacts, or not) where the command line gave no method, step or tolerance: the table's
+// (the default drive's) while the command line is read.
 void applyDefaults(RunArguments& r, const SolverDefaults& own) {
   applySolverDefaults(own, r.opt.integrator);
   r.opt.integrator.method = r.method.value_or(r.opt.integrator.method);
   r.opt.integrator.fixed.step = r.step.value_or(defaultStep(own, r.opt.integrator.method));
   r.opt.integrator.adaptive.rtol = r.rtol.value_or(r.opt.integrator.adaptive.rtol);
+}
+
+// The same for the drive m: its own row (run/drive_defaults.h), the step of the row its method
+// takes unless one was given, and why.
+void applyDriveDefaults(RunArguments& r, const Model& m) {
+  applyDefaults(r, ownTableRow(m, r.opt));
+  const StepChoice step = defaultStepChoice(m, r.opt, r.opt.integrator.method, r.step);
+  r.opt.integrator.fixed.step = step.step;
+  r.stepReason = step.reason;
+  r.opt.stepName = "--step";
 }
 
 // The options in any order, -h/--help ends the reading; then the ranges of the numbers. A bad
@@ -238,6 +252,7 @@ double startRun(Simulation& sim, const Model& m, const RunArguments& r) {
   if (!r.quiet) {
     std::printf("drive: %s (%d links, %zu rotors, %s fidelity, %zu states)\n", m.name.c_str(), m.chain.links,
                 m.rotors.size(), choiceName(sim.fidelity()), sim.state().size());
+    if (sim.integratorFixedStep() > 0.0) std::printf("%s\n", r.stepReason.c_str());
     if (const span::SpanModel* sm = sim.spanModel())
       for (const std::string& note : sm->notes) std::printf("  %s\n", note.c_str());
     if (r.initialState.empty())
@@ -369,7 +384,10 @@ void writeSummary(const Simulation& sim, const RunArguments& r, const RunResult&
   if (res.tReached > 0) j["cpuPerSimulatedSecond"] = res.cpu / res.tReached;
   // the integrator's counters
   j["steps"] = st.steps;
-  if (sim.integratorFixedStep() > 0.0) j["step"] = sim.integratorFixedStep();
+  if (sim.integratorFixedStep() > 0.0) {
+    j["step"] = sim.integratorFixedStep();
+    j["stepReason"] = r.stepReason;
+  }
   j["outputStep"] = res.outputInterval;
   j["rhsEvaluations"] = sim.rhsEvaluations();
   j["jacobianEvaluations"] = st.jacobianEvaluations;
@@ -393,7 +411,7 @@ int run(RunArguments r) {
   const DriveDescription desc = cli::loadDrive(r.drive);
   auto model = std::make_shared<const Model>(assemble(desc));
   const Model& m = *model;
-  applyDefaults(r, ownSolverDefaults(m, r.opt));
+  applyDriveDefaults(r, m);
   const double w0 = r.rpm * 2.0 * kPi / 60.0;
   const double tEnd = r.duration > 0.0 ? r.duration : r.cycles * 2.0 * 2.0 * kPi / w0;
   Simulation sim(model, r.opt, makeInputs(m, r, w0));

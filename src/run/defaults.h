@@ -18,6 +18,10 @@ struct ChoiceNames<Scene> {
   static constexpr ChoiceName<Scene> table[] = {{Scene::TimingDrive, "timing"}, {Scene::Cvt, "cvt"}};
 };
 
+/// [s] The communication step every timing row's step divides (the FMU's 0.1 ms): a row's step is
+/// kStepInterval / n for a whole n.
+constexpr double kStepInterval = 1e-4;
+
 struct SolverDefaults {
   Scene scene;
   Fidelity fidelity;
@@ -29,7 +33,9 @@ struct SolverDefaults {
 };
 
 // clang-format off
-// (why each row is what it is, with the measurements behind it: docs/defaults.md)
+// (why each row is what it is, with the measurements behind it: docs/defaults.md). The timing
+// rows are the default drive's: another drive's steps follow from its stability estimate
+// (run/drive_defaults.h), the same rows for the default drive.
 inline constexpr SolverDefaults kSolverDefaults[] = {
   {Scene::TimingDrive, Fidelity::Link, false, IntegratorMethod::FixedVerletImplicitJointDamping, 1e-4 / 28, 1e-5},
   {Scene::TimingDrive, Fidelity::Link, true, IntegratorMethod::FixedVerlet, 2.5e-6, 1e-5},
@@ -52,15 +58,21 @@ constexpr const SolverDefaults& solverDefaults(Scene scene, Fidelity fidelity = 
   return found ? *found : kSolverDefaults[0];  // (kSolverDefaults[0]: unreachable for the pairs above)
 }
 
-/// The fixed step [s] of `method` where none is given: the own row's for its method, else the step
-/// of the scene and fidelity's row of that method, else that of its row for joints with clearance or
-/// rigid contacts (plain Verlet's checked step: a method without a row of its own is not checked at
-/// the real-time method's longer step), else the own row's.
-constexpr double defaultStep(const SolverDefaults& own, IntegratorMethod method) {
-  if (method == own.method) return own.step;
+/// The row whose step `method` takes where none is given: the own row for its method, else the
+/// scene and fidelity's row of that method, else its row for joints with clearance or rigid
+/// contacts (plain Verlet's checked step: a method without a row of its own is not checked at the
+/// real-time method's longer step), else the own row.
+constexpr const SolverDefaults& defaultStepRow(const SolverDefaults& own, IntegratorMethod method) {
+  if (method == own.method) return own;
   for (const SolverDefaults& row : kSolverDefaults)
-    if (row.scene == own.scene && row.fidelity == own.fidelity && row.method == method) return row.step;
-  return solverDefaults(own.scene, own.fidelity, true).step;  // (the own row where there is no such row)
+    if (row.scene == own.scene && row.fidelity == own.fidelity && row.method == method) return row;
+  return solverDefaults(own.scene, own.fidelity, true);  // (the own row where there is no such row)
+}
+
+/// The fixed step [s] of `method` where none is given, for the default drive (defaultStepRow's
+/// row; a drive's own steps: run/drive_defaults.h).
+constexpr double defaultStep(const SolverDefaults& own, IntegratorMethod method) {
+  return defaultStepRow(own, method).step;
 }
 
 /// Sets the method, the fixed step and the tolerance of a row into integrator settings.

@@ -189,9 +189,18 @@ RunChoices runChoices(const Model& m, const SimulationOptions& opt) {
           opt.integrator.rigid.rigidPins};
 }
 
-const SolverDefaults& ownSolverDefaults(const Model& m, const SimulationOptions& opt) {
+const SolverDefaults& ownTableRow(const Model& m, const SimulationOptions& opt) {
   const bool rigid = opt.contactMethod.value_or(m.description.contact.method) != ContactMethod::Compliant;
   return solverDefaults(Scene::TimingDrive, opt.fidelity, m.chain.jointClearance > 0.0 || rigid);
+}
+
+SolverDefaults ownSolverDefaults(const Model& m, const SimulationOptions& opt) {
+  return driveRow(m, ownTableRow(m, opt)).row;
+}
+
+StepChoice defaultStepChoice(const Model& m, const SimulationOptions& opt, IntegratorMethod method,
+                             std::optional<double> given) {
+  return chooseStep(m, ownTableRow(m, opt), method, given);
 }
 
 std::vector<ChoiceProblem> combinationProblems(const Model& m, const RunChoices& c) {
@@ -285,10 +294,34 @@ double Simulation::advanceTo(double t) {
     throw std::invalid_argument("time " + std::to_string(t) + " s is beyond the range of the time grid");
   const long long target = grid_.indexOf(t);
   if (target > k_) {
-    integrator_->advance(grid_.time(target), y_.data());
+    try {
+      integrator_->advance(grid_.time(target), y_.data());
+    } catch (const IntegrationError& e) {
+      const FailureKind kind = e.failureKind();
+      const double step = integrator_->fixedStep();
+      if (!(step > 0.0) || (kind != FailureKind::BlowUp && kind != FailureKind::Tunnelling && kind != FailureKind::NonFinite))
+        throw;
+      throw IntegrationError(e.time(), kind, e.reason() + "; " + blowUpAdvice(step));
+    }
     k_ = target;
   }
   return time();
+}
+
+// The drive's stable step for this run's method: a CVT's row for a drive with pulleys; on a timing
+// drive rigid contacts take the row of rigid contacts whatever the integrator, compliant ones the
+// row whose step the method takes.
+std::string Simulation::blowUpAdvice(double step) const {
+  const Model& m = *model_;
+  const SolverDefaults& stable = !m.pulleys.empty() ? solverDefaults(Scene::Cvt)
+                                 : contactMethod_ != ContactMethod::Compliant
+                                     ? solverDefaults(Scene::TimingDrive, options_.fidelity, true)
+                                     : defaultStepRow(ownTableRow(m, options_), options_.integrator.method);
+  try {
+    return stepAdvice(m, stable, step, options_.stepName);
+  } catch (const std::exception& e) {  // (no estimate: the failure stands alone)
+    return std::string("no stable step estimated (") + e.what() + ")";
+  }
 }
 
 const Outputs& Simulation::outputs() {

@@ -14,6 +14,7 @@
 #include "dynamics/jacobian.h"
 #include "assembly/model.h"
 #include "run/defaults.h"
+#include "run/drive_defaults.h"
 #include "outputs/outputs.h"
 #include "statics/preload.h"
 #include "nonsmooth/rigid_drive.h"
@@ -33,6 +34,7 @@ struct SimulationOptions {
   PreloadOptions preload;
   HealthLimits health;              // blow-up and tunnelling detection
   int monitoredLink = -1;           // -1: the model's
+  std::string stepName = "solver.step";  // the fixed step's setting as a blow-up's advice names it
 };
 
 /// The compliant-contact chain drive as an ODE system for the integrators.
@@ -96,10 +98,18 @@ struct RunChoices {
 };
 RunChoices runChoices(const Model& m, const SimulationOptions& opt);
 
-/// The timing drive's solver defaults for a run of m with the options' fidelity (run/defaults.h):
-/// the row for joints with clearance or rigid contacts (the options' or the drive's) where they
-/// apply.
-const SolverDefaults& ownSolverDefaults(const Model& m, const SimulationOptions& opt);
+/// The table's row (run/defaults.h) of a run of m with the options' fidelity: the row for joints
+/// with clearance or rigid contacts (the options' or the drive's) where they apply.
+const SolverDefaults& ownTableRow(const Model& m, const SimulationOptions& opt);
+
+/// The timing drive's solver defaults for a run of m with the options' fidelity: ownTableRow with
+/// the drive's own step (run/drive_defaults.h; the table's for the default drive).
+SolverDefaults ownSolverDefaults(const Model& m, const SimulationOptions& opt);
+
+/// The fixed step of a run of m with `method` and why: `given` as given, else the drive's step of
+/// the row whose step the method takes (defaultStepRow on ownTableRow).
+StepChoice defaultStepChoice(const Model& m, const SimulationOptions& opt, IntegratorMethod method,
+                             std::optional<double> given = std::nullopt);
 
 /// The choice a combination rule refuses (the one to change), and why: its text starts with the
 /// refused value, so that each boundary puts its own name of the choice before it.
@@ -127,7 +137,9 @@ class Simulation {
   /// Integrates to the grid point of t (time_grid.h: t itself when it is on the grid, otherwise
   /// the point before it) and returns that point's time; throws IntegrationError (time and
   /// reason) when the method fails, std::invalid_argument when t is beyond the grid's range. The
-  /// state stays at its last successful value.
+  /// state stays at its last successful value. A fixed-step method's blow-up (a joint or span
+  /// stretched, a contact tunnelled, a state not finite) names the step it ran with and the
+  /// drive's estimated stable step to try (stepAdvice, under the options' stepName).
   double advanceTo(double t);
   /// Restarts the integrator from the current state and grid point (a communication step that
   /// must not depend on the integrator's history: exact rollback, bit-identical instances).
@@ -182,6 +194,7 @@ class Simulation {
 
   void buildLinkModel(JointModel joints);
   void buildSpanModel();
+  std::string blowUpAdvice(double step) const;  // stepAdvice for this run's failure at `step`
 };
 
 }  // namespace chaindrive

@@ -202,3 +202,90 @@ def test_a_method_without_a_row_takes_plain_verlets_step(table, tmp_path):
                     "--quiet", "--summary", str(summary)], check=True, capture_output=True)
     assert json.loads(summary.read_text())["step"] == row["step_s"]
     assert job.run_config(method="fixed-newmark").solver_step == row["step_s"]
+
+
+TEST_DRIVES = paths.ROOT / "tests" / "drives"
+
+
+def drive_table(drive):
+    text = subprocess.run([paths.executable("chaindrive-info"), "--defaults", "--drive", str(drive)],
+                          capture_output=True, text=True, check=True).stdout
+    return json.loads(text)
+
+
+def test_the_default_drive_file_has_the_tables_steps(table):
+    """The default drive given as a file has the table's steps bit for bit (its stability estimate is
+    what the margins are calibrated on), each with the reason; the harness reads the same."""
+    own = drive_table(paths.ROOT / "src" / "drives" / "default_drive.json")
+    assert own["drive"]["clearanceOrRigid"] is False
+    for fidelity in ("link", "span"):
+        rows = [(own["timing"][fidelity], table["timing"][fidelity])]
+        if fidelity == "link":
+            rows.append((own["timing"]["link"]["clearanceOrRigid"], table["timing"]["link"]["clearanceOrRigid"]))
+        for mine, default in rows:
+            assert (mine["method"], mine["step_s"]) == (default["method"], default["step_s"])
+            assert mine["step_s"] == 1e-4 / mine["divisions"]
+            assert mine["reason"].startswith(f"step {mine['step_s']:.4g} s = 1e-4/{mine['divisions']}: ")
+            assert "the default drive's margin" in mine["reason"]
+    assert table["timing"]["link"]["divisions"] == 28 and table["timing"]["span"]["divisions"] == 3
+    assert table["timing"]["link"]["clearanceOrRigid"]["divisions"] == 40
+    assert defaults.drive_solver(paths.ROOT / "src" / "drives" / "default_drive.json") == defaults.solver("timing")
+
+
+def test_a_lighter_chains_drive_takes_a_shorter_step(table, tmp_path):
+    """tests/drives/dohc_8mm.json (05B chain, 1.44 g links, the default's roller contact): every link
+    row shorter than the default's, from its stability estimate, with the reason naming the link; the
+    harness's drive functions read the same rows; chaindrive-run without --step runs at it and says why."""
+    drive = TEST_DRIVES / "dohc_8mm.json"
+    own = drive_table(drive)
+    link, plain = own["timing"]["link"], own["timing"]["link"]["clearanceOrRigid"]
+    assert link["step_s"] < table["timing"]["link"]["step_s"] and plain["step_s"] < 2.5e-6
+    assert link["step_s"] == 1e-4 / link["divisions"] <= link["margin"] * link["estimate_s"]
+    assert link["margin"] == table["timing"]["link"]["margin"]
+    assert "on a 1.44 g link" in link["reason"]
+    assert defaults.drive_solver(drive) == defaults.Solver(link["method"], link["step_s"], link["tolerance"])
+    assert defaults.drive_step_for(drive, "link", "fixed-newmark") == plain["step_s"]
+    assert defaults.solver("timing", "link", drive=drive).step == link["step_s"]
+    assert defaults.step_reason("link", drive=drive) == link["reason"]
+    summary = tmp_path / "summary.json"
+    out = subprocess.run([paths.executable("chaindrive-run"), "--drive", str(drive), "--duration", "1e-4",
+                          "--summary", str(summary)], check=True, capture_output=True, text=True).stdout
+    s = json.loads(summary.read_text())
+    assert s["step"] == link["step_s"] and s["stepReason"] == link["reason"]
+    assert link["reason"] in out
+
+
+def test_the_fmu_of_a_test_drive_steps_at_its_own_step():
+    """The FMU of tests/drives/dohc_8mm.json with solver.step 0 steps at the drive's own step, and logs
+    the step and the reason (category logEvents) at its initialization."""
+    from harness.fmu import export
+    drive = TEST_DRIVES / "dohc_8mm.json"
+    link = drive_table(drive)["timing"]["link"]
+    slave = fmu.Slave("defaults-dohc", fmu=export.fmu_for(str(drive)), logging_on=True)
+    slave.initialize(inputs={"crank.w": fmu.rpm_to_rad_s(3000.0)})
+    slave.step(1e-4, t=0.0)
+    steps = slave.get(["solver.steps"])["solver.steps"]
+    slave.close()
+    assert steps == link["divisions"]
+    logged = [m for status, category, m in slave.messages if category == "logEvents"]
+    assert f"solver: {link['method']}, {link['reason']}" in logged, logged
+
+
+def test_a_blow_up_names_its_step_and_the_step_to_try(table):
+    """An explicit step beyond the stable one: the FMU's fmi2Discard names the step it ran with and the
+    drive's stable step, as solver.step; chaindrive-run's failure the same as --step."""
+    link = table["timing"]["link"]
+    slave = fmu.Slave("defaults-blow-up", parameters={"solver.step": 8e-6})
+    slave.initialize(inputs={"crankshaft.w": fmu.rpm_to_rad_s(3000.0)})
+    with pytest.raises(Exception):
+        for k in range(200):
+            slave.step(1e-4, t=k * 1e-4)
+    advice = f"the step was 8 us, above this drive's estimated stable step: try solver.step = {link['step_s']:.4g} s " \
+             f"(1e-4/{link['divisions']})"
+    assert any(advice in m for m in slave.errors()), slave.errors()
+    slave.slave.freeInstance()
+    p = subprocess.run([paths.executable("chaindrive-run"), "--step", "8e-6", "--duration", "0.02", "--quiet"],
+                       capture_output=True, text=True)
+    assert p.returncode == 3
+    assert f"above this drive's estimated stable step: try --step {link['step_s']:.4g} (1e-4/{link['divisions']})" \
+        in p.stdout, p.stdout

@@ -93,8 +93,9 @@ TEST(FixedVerlet, JointSweepKeepsARigidKickAndShrinksTheStiffest) {
   }
 }
 
-// At 4 us plain Verlet blows up within 20 ms (its limit is about 3.2 us); with the joints'
-// damping implicit the run goes on, bit-identical when repeated.
+// At 4 us plain Verlet blows up within 20 ms (its limit is about 3.2 us), and says which step to
+// try (its row's, run/drive_defaults.h); with the joints' damping implicit the run goes on,
+// bit-identical when repeated.
 TEST(FixedVerlet, ImplicitJointDampingStableWherePlainVerletBlowsUp) {
   auto m = defaultModel();
   try {
@@ -102,6 +103,8 @@ TEST(FixedVerlet, ImplicitJointDampingStableWherePlainVerletBlowsUp) {
     FAIL() << "expected plain Verlet to blow up at 4 us";
   } catch (const IntegrationError& e) {
     EXPECT_TRUE(e.failureKind() == FailureKind::BlowUp || e.failureKind() == FailureKind::Tunnelling) << e.what();
+    EXPECT_NE(std::string(e.what()).find("; the step was 4 us, above this drive's estimated stable step: try "
+                                         "solver.step = 2.5e-06 s (1e-4/40)"), std::string::npos) << e.what();
   }
   const auto a = tensionerRun(m, "fixed-verlet-implicit-joint-damping", 4e-6, 0.02);
   const auto b = tensionerRun(m, "fixed-verlet-implicit-joint-damping", 4e-6, 0.02);
@@ -125,13 +128,17 @@ TEST(FixedVerlet, SameBitsWithTwoAndFourLanes) {
 }
 
 // Beyond its stable step (about 4.6 us) the real-time method stops with a named failure, not with
-// garbage: at 8 us within 20 ms.
+// garbage: at 8 us within 20 ms, naming the step it ran with and the drive's stable step to try.
 TEST(FixedVerlet, ImplicitJointDampingBeyondItsLimitIsANamedFailure) {
   try {
     tensionerRun(defaultModel(), "fixed-verlet-implicit-joint-damping", 8e-6, 0.02);
     FAIL() << "expected a blow-up at 8 us";
   } catch (const IntegrationError& e) {
     EXPECT_TRUE(e.failureKind() == FailureKind::BlowUp || e.failureKind() == FailureKind::Tunnelling) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("; the step was 8 us, above this drive's estimated stable step: try solver.step = "
+                        "3.571e-06 s (1e-4/28)"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;  // one line
   }
 }
 
