@@ -45,6 +45,7 @@ import dataclasses
 import json
 import math
 import pathlib
+import subprocess
 import sys
 import time
 
@@ -123,12 +124,24 @@ def run_config(**options):
     defaults that depend on other options: the run-in from the speed (run_in_cycles), the solver
     from the fidelity (harness/defaults.py)."""
     given = {name: value for name, value in options.items() if value is not None}
-    rpm, fidelity = given.get("rpm", DEFAULT_RPM), given.get("fidelity", FIDELITIES[0])
-    plain = drive_clearance_or_rigid(given.get("drive"))
-    solver = defaults.solver("timing", fidelity, clearance_or_rigid=plain)
+    fidelity, drive = given.get("fidelity", FIDELITIES[0]), given.get("drive")
+    plain = drive_clearance_or_rigid(drive)
+    # (the drive's own steps, docs/defaults.md; a drive that cannot be read: the table's, its problem
+    # named by the run's own checks)
+    own = drive if drive is not None and readable(drive) else None
+    solver = defaults.solver("timing", fidelity, clearance_or_rigid=plain, drive=own)
     method = given.get("method", solver.method)
     return RunConfig(**{"run_in": None, "method": method, "rtol": solver.tolerance,
-                        "solver_step": defaults.step_for("timing", fidelity, method, plain), **given})
+                        "solver_step": defaults.step_for("timing", fidelity, method, plain, drive=own), **given})
+
+
+def readable(drive):
+    """Whether chaindrive-info reads the drive file (its steps can be found)."""
+    try:
+        defaults.printed(drive)
+        return True
+    except subprocess.CalledProcessError:
+        return False
 
 
 class Progress:
@@ -500,6 +513,7 @@ def describe(config, fmu_file, elements, loads):
           f"{config.rpm:g} rpm, {fixed}, then "
           f"{config.cycles} engine cycles, {config.coupling}-loop coupling, communication step {config.step * 1e6:g} us, "
           f"{config.method} at {config.solver_step * 1e6:g} us")
+    print(f"solver step: {step_text(config)}")
     print(f"crankshaft speed ({elements.crank}.w): {tables.crankshaft_speed(config.rpm, config.tables).path}")
     for name, load in loads.items():
         print(f"load of {name}: {load.source}")
@@ -508,6 +522,16 @@ def describe(config, fmu_file, elements, loads):
     if elements.hydraulic:
         print(f"hydraulic tensioner: oil supply {config.supply_pressure / BAR:g} bar (gauge), "
               f"{config.oil_temperature - ZERO_CELSIUS:g} degC")
+
+
+def step_text(config):
+    """Why the run's solver step is what it is: the drive's own (its reason) or as given."""
+    plain = drive_clearance_or_rigid(config.drive)
+    own_drive = config.drive if config.drive is not None and readable(config.drive) else None
+    own = defaults.solver("timing", config.fidelity, plain, own_drive)
+    if config.method == own.method and config.solver_step == own.step:
+        return defaults.step_reason(config.fidelity, plain, own_drive)
+    return f"{config.solver_step:.6g} s as given (the drive's own for {own.method}: {own.step:.6g} s)"
 
 
 def simulate(config, progress=True):

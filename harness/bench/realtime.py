@@ -72,8 +72,9 @@ def add_arguments(ap):
     ap.add_argument("--repeats", type=int, default=2,
                     help="runs per speed (bit-identical; their per-step minimum is the model's cost per step)")
     ap.add_argument("--method", default=job.REALTIME_METHOD, help="FMU parameter solver.method")
-    ap.add_argument("--solver-step", type=float, default=job.REALTIME_STEP,
-                    help="FMU parameter solver.step [s] (default: 1e-4 / 28, the real-time method's)")
+    ap.add_argument("--solver-step", type=float,
+                    help="FMU parameter solver.step [s] (default: the drive's own step of the method, 1e-4 / 28 for the "
+                    "default drive's real-time method)")
     ap.add_argument("--newmark-gamma", type=float, default=0.5, help="FMU parameter solver.newmarkGamma (fixed-newmark)")
     ap.add_argument("--reference", action="append", default=[], metavar="RPM=SUMMARY",
                     help="summary.json of a reference run at that speed (repeatable)")
