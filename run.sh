@@ -180,15 +180,21 @@ case "${1:-}" in
     shift
     install_system_packages "${TEST_APT_PACKAGES[@]}"
     setup_python test,package
+    stage=$SECONDS
     build  # (always: ctest needs the build of the sources as they are; cheap when nothing changed)
+    echo "== set-up and build: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== C++ tests"
     ctest --test-dir "$CHAINDRIVE_BUILD" --output-on-failure -j 2
+    echo "== C++ tests: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== the FMUs for download (dist/)"
     "$VENV/bin/python" -m harness package
+    echo "== packaging: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== Python tests"
-    # the span model's calibrations (src/span/calibration_cache.h) kept beside the build, as ctest's
+    # the span model's calibrations (src/span/calibration_cache.h) kept beside the build, as ctest's;
+    # one worker per core (pytest-xdist), each test file on one worker (its module fixtures made once)
     CHAINDRIVE_CACHE_DIR="${CHAINDRIVE_CACHE_DIR:-$CHAINDRIVE_BUILD/calibration-cache}" \
-      "$VENV/bin/python" -m pytest -q tests/python "$@"
+      "$VENV/bin/python" -m pytest -q -n auto --dist loadfile --durations=15 tests/python "$@"
+    echo "== Python tests: $((SECONDS - stage)) s"
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
       (sanitizer_stage)
     fi

@@ -14,8 +14,6 @@ namespace chaindrive {
 
 namespace {
 
-std::string fmt(double v) { return formatNumber(v); }
-
 // The path through the two pulleys' running circles, the driving one's radius r1.
 ChainPath pathAt(const CvtDescription& d, double r1) {
   return ChainPath::through({{Vec2{0.0, 0.0}, d.rotationSense * r1},
@@ -36,9 +34,9 @@ double closingRadius(const CvtDescription& d, double chord) {
   double lo = d.pitch, hi = 0.98 * d.centerDistance / (1.0 + d.ratio);
   const double gLo = lo < hi ? closureGap(d, lo, chord) : 0.0, gHi = lo < hi ? closureGap(d, hi, chord) : 0.0;
   if (!(gLo > 0.0 && gHi < 0.0))
-    throw DescriptionError({"chain.numberOfLinks: " + std::to_string(d.numberOfLinks) + " links of " + fmt(d.pitch) +
-                            " m do not fit around pulleys " + fmt(d.centerDistance) + " m apart at ratio " +
-                            fmt(d.ratio) + " with running radii from one pitch to where the pulleys touch"});
+    throw DescriptionError({"chain.numberOfLinks: " + std::to_string(d.numberOfLinks) + " links of " + formatNumber(d.pitch) +
+                            " m do not fit around pulleys " + formatNumber(d.centerDistance) + " m apart at ratio " +
+                            formatNumber(d.ratio) + " with running radii from one pitch to where the pulleys touch"});
   // regula falsi with the Illinois halving (the gap is smooth between the radii at which a pin
   // passes from a wrap to a strand): a dozen evaluations instead of bisection's forty
   double fLo = gLo, fHi = gHi;
@@ -147,7 +145,7 @@ RatioTable ratioTable(const CvtDescription& d, const PinSheaveLaw& law) {
     try {
       l = layoutAt(at, law);
     } catch (const DescriptionError& e) {
-      throw DescriptionError({"pulleys.ratioRange: [" + fmt(d.ratioMin) + ", " + fmt(d.ratioMax) +
+      throw DescriptionError({"pulleys.ratioRange: [" + formatNumber(d.ratioMin) + ", " + formatNumber(d.ratioMax) +
                               "] reaches beyond the ratios the chain fits at: " + e.problems().front()});
     }
     for (int p = 0; p < 2; ++p) {
@@ -163,10 +161,10 @@ void noteLayout(Model& m, const CvtLayout& out) {
   a.closureElement = "drivingPulley (running radius)";
   a.closureValue = out.runningRadius[0];
   a.pathLength = m.path.length();
-  a.notes.push_back("running radii " + fmt(out.runningRadius[0]) + " m (driving) and " + fmt(out.runningRadius[1]) +
+  a.notes.push_back("running radii " + formatNumber(out.runningRadius[0]) + " m (driving) and " + formatNumber(out.runningRadius[1]) +
                     " m (driven)");
-  a.notes.push_back("pre-tension " + fmt(out.pretension) + " N; clamping forces " + fmt(out.clampingForce[0]) +
-                    " N (driving) and " + fmt(out.clampingForce[1]) + " N (driven)");
+  a.notes.push_back("pre-tension " + formatNumber(out.pretension) + " N; clamping forces " + formatNumber(out.clampingForce[0]) +
+                    " N (driving) and " + formatNumber(out.clampingForce[1]) + " N (driven)");
 }
 
 }  // namespace

@@ -10,8 +10,6 @@ extern const std::string_view kDefaultCvtJson;  // generated at build time
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 void readHeader(Fields& top, CvtDescription& d) {
   top.string("schema", {"chaindrive.cvt/1"}, std::nullopt);
   d.name = top.string("name", {}, std::string("unnamed CVT"));

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #if defined(__clang__)
 #pragma STDC FP_CONTRACT OFF
@@ -34,6 +35,13 @@ inline double fromBits(std::uint64_t bits) {
   std::memcpy(&x, &bits, sizeof x);
   return x;
 }
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kPio2Hi = 1.57079632679489655800e+00;  // pi/2 in two doubles
+constexpr double kPio2Lo = 6.12323399573676603587e-17;
+
+/// x with the low 32 bits of its significand cleared (a short high part whose products are exact)
+inline double highPart(double x) { return fromBits(bitsOf(x) & 0xFFFFFFFF00000000ull); }
 
 /// 2^k for -1022 <= k <= 1023, written as its bits
 inline double powerOfTwo(int k) { return fromBits(static_cast<std::uint64_t>(k + 1023) << 52); }

@@ -13,8 +13,8 @@ namespace chaindrive::math {
 namespace {
 
 using detail::DoubleDouble;
+using detail::kInfinity;
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kLn2Hi = 6.93147180369123816490e-01;  // ln 2 in two parts, the first of 32 bits:
 constexpr double kLn2Lo = 1.90821492927058770002e-10;  // k kLn2Hi is exact for |k| < 2^21
 constexpr double kInvLn2 = 1.44269504088896338700e+00;

@@ -14,14 +14,15 @@ namespace chaindrive::math {
 namespace {
 
 using detail::DoubleDouble;
+using detail::highPart;
+using detail::kInfinity;
+using detail::kPio2Hi;
+using detail::kPio2Lo;
 
-constexpr double kPio2Hi = 1.57079632679489655800e+00;  // pi/2 in two doubles
-constexpr double kPio2Lo = 6.12323399573676603587e-17;
 constexpr double kPio4Hi = 7.85398163397448278999e-01;
 constexpr double kPiHi = 3.14159265358979311600e+00;  // pi in two doubles
 constexpr double kPiLo = 1.22464679914735317720e-16;
 constexpr double k3Pio4 = 2.35619449019234492885e+00;
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// (asin(s) - s) / s^3 as a function of t = s^2 (t times a rational function of t, Remez error
 /// below 2^-58.75 on [0, 0.25]): fdlibm's pS0..pS5, qS1..qS4
@@ -36,9 +37,6 @@ double asinRational(double t) {
                                    t * (-6.88283971605453293030e-01 + t * 7.70381505559019352791e-02)));
   return p / q;
 }
-
-/// x with the low 32 bits of its significand cleared: a 21-bit high part whose square is exact
-double highPart(double x) { return detail::fromBits(detail::bitsOf(x) & 0xFFFFFFFF00000000ull); }
 
 /// atan(t) + correction = table - rest for 0 <= t < 2^66 (s_atan.c: atan(t) = atan(c) + atan(u)
 /// for the breakpoint c at hand, u by an odd polynomial); with correction 0, fdlibm's bits

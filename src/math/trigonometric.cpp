@@ -15,10 +15,11 @@ namespace chaindrive::math {
 namespace {
 
 using detail::DoubleDouble;
+using detail::highPart;
+using detail::kPio2Hi;
+using detail::kPio2Lo;
 
 constexpr double kLargestDouble = std::numeric_limits<double>::max();
-constexpr double kPio2Hi = 1.57079632679489655800e+00;  // pi/2 in two doubles
-constexpr double kPio2Lo = 6.12323399573676603587e-17;
 
 /// an argument x = (4 j + quadrant) pi/2 + hi + lo for some integer j, |hi + lo| <= pi/4 or a hair more
 struct Reduced {
@@ -190,9 +191,6 @@ double cosKernel(double x, double y) {  // k_cos.c: cos(x + y) ~ cos(x) - x y
   const double halfZ = 0.5 * z, oneMinusHalfZ = 1.0 - halfZ;
   return oneMinusHalfZ + (((1.0 - oneMinusHalfZ) - halfZ) + (z * r - x * y));  // (1 - z/2 in two parts)
 }
-
-/// x with the low 32 bits of its significand cleared (a short high part whose products are exact)
-double highPart(double x) { return detail::fromBits(detail::bitsOf(x) & 0xFFFFFFFF00000000ull); }
 
 /// tan(x + y) (iy = 1) or -1/tan(x + y) (iy = -1): k_tan.c
 double tanKernel(double x, double y, int iy) {

@@ -11,7 +11,6 @@ namespace chaindrive::span {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kTableNodes = 241;       // over the guide's angle range (0.05 deg apart for +-6 deg)
 constexpr double kHighestOrder = 20.0; // engine orders a span's first mode must lie above ...
 constexpr double kHighestSpeed = 6500.0 / 60.0;  // ... at the highest engine speed [rev/s]
