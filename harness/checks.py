@@ -33,13 +33,16 @@ def energy_balance_error(record, first, last):
     return (change("energy.input") - dissipated - stored) / dissipated if dissipated > 0.0 else math.nan
 
 
-def energy_warnings(error):
-    """The warning lines of an energy-balance error (none when within the limit)."""
+def energy_warnings(error, step=None):
+    """The warning lines of an energy-balance error (none when within the limit); `step`: the run's
+    fixed solver step [s], whose half it offers (what a drive's dynamic roller forces may need,
+    docs/defaults.md#a-step-that-fits-the-drive)."""
     if abs(error) <= ENERGY_BALANCE_LIMIT:
         return []
+    shorter = f", e.g. --solver-step {step / 2:.6g}" if step else ""
     return [f"energy balance {100 * error:+.2f} % of the dissipated energy over the counted cycles misses its limit "
-            f"{100 * ENERGY_BALANCE_LIMIT:g} %: the results are not accurate (a smaller --solver-step or a tighter "
-            f"--rtol)"]
+            f"{100 * ENERGY_BALANCE_LIMIT:g} %: the results are not accurate (a smaller --solver-step{shorter}, or a "
+            f"tighter --rtol)"]
 
 
 def fidelity_notes(fidelity, drive):

@@ -53,6 +53,8 @@ COMMANDS = {
                  "the cheapest fidelity that meets them"),
     "span-steps": ("harness.study.span_steps", "the span model's cycle statistics over its step: the evidence "
                    "behind its default step"),
+    "drive-steps": ("harness.study.drive_steps", "every test drive at its own default step against half the step, "
+                    "closed loop: blow-ups, energy balance, cycle statistics within the scatter"),
     "pulse-response": ("harness.study.pulse_response", "the camshafts' response to a torque pulse, link model "
                        "against span model: is there a modal damping to identify"),
     "tensioner-study": ("harness.study.tensioner", "the hydraulic tensioner against the spring-damper law at 1000, "

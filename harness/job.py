@@ -434,7 +434,7 @@ SHOWN_CYCLES = 4  # counted cycles shown in the time histories after the run-in
 def write_plots(out, d, config, scene_run, per_cycle, summary):
     """The plots of a run into out (counted cycles from the end of the run-in); returns their files."""
     rpm, elements = config.rpm, scene_run.elements
-    spans = cycle_stats.counted_spans(d[elements.crank + ".phi"], scene_run.run_in, config.cycles)
+    spans = counted_spans(config, scene_run)
     t0 = d["time"][spans[0][0]]
     title = f"{rpm:g} rpm, {config.fidelity} fidelity, {config.coupling} loop, {config.method}"
     drive_picture.drive_picture(out / "drive.png", config.drive)
@@ -565,6 +565,12 @@ def cycle_statistics(config, scene_run):
     return per_cycle, cycle_stats.summarize(per_cycle)
 
 
+def counted_spans(config, scene_run):
+    """(first, end) sample indices of each counted engine cycle of a scene run."""
+    crank_angle = scene_run.record[scene_run.elements.crank + ".phi"]
+    return cycle_stats.counted_spans(crank_angle, scene_run.run_in, config.cycles)
+
+
 def run_checks(config, scene_run, per_cycle_spans):
     """The run's checks over its counted cycles (harness/checks.py): (checks for run.json, warning
     lines, note lines)."""
@@ -572,7 +578,9 @@ def run_checks(config, scene_run, per_cycle_spans):
     error = checks.energy_balance_error(scene_run.record, first, last)
     found = {"energyBalanceError": error, "energyBalanceLimit": checks.ENERGY_BALANCE_LIMIT}
     notes = list(config.notes) + checks.fidelity_notes(config.fidelity, config.drive)
-    warnings = checks.energy_warnings(error) + ([scene_run.settling.note()] if scene_run.settling.note() else [])
+    fixed_step = config.solver_step if config.method.startswith("fixed") else None
+    settling = [scene_run.settling.note()] if scene_run.settling.note() else []
+    warnings = checks.energy_warnings(error, fixed_step) + settling
     return found, warnings, notes
 
 
@@ -617,8 +625,7 @@ def run(config):
     write_csv(csv, scene_run.record)
     per_cycle, summary = cycle_statistics(config, scene_run)
     d = scene_run.record
-    spans = cycle_stats.cycle_spans(d[scene_run.elements.crank + ".phi"], scene_run.run_in)[:config.cycles]
-    found, warnings, notes = run_checks(config, scene_run, spans)
+    found, warnings, notes = run_checks(config, scene_run, counted_spans(config, scene_run))
     write_summary(out, summary, dict(scene_run.cost(config), checks=found, warnings=warnings, notes=notes))
     pictures = write_plots(out, d, config, scene_run, per_cycle, summary)
     report(summary, scene_run)

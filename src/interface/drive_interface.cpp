@@ -109,9 +109,10 @@ constexpr DriveVariable kDriveParameters[] = {
    "step of the fixed-step integrators and of time stepping, exactly: they step on the grid t_k = startTime + k "
    "solver.step; a communication point within 1 % of a step from a grid point is that point, one farther off is "
    "integrated to the grid point before it (solver.time), the remainder carried. Adaptive methods stop on a 1 us "
-   "grid by the same rule. 0 (the default): the fidelity's own step, 3.5714285714285718e-6 s (link), "
-   "3.3333333333333335e-5 s (span) or 2.5e-6 s (link, a drive whose joints have clearance, or rigid contacts), the "
-   "same defaults as every entry point (chaindrive-info --defaults)"},
+   "grid by the same rule. 0 (the default): the drive's own step for the fidelity and method, from its stiffest "
+   "joint and contact against its lightest link (chaindrive-info --defaults --drive FILE prints it and why, the FMU "
+   "logs it at initialization); the default drive's: 3.5714285714285718e-6 s (link), 3.3333333333333335e-5 s "
+   "(span) or 2.5e-6 s (link, a drive whose joints have clearance, or rigid contacts)"},
   {"solver.preload", 105, B, Par, Binding::SolverPreload, When::Always, "", "true", "",
    "start from the pre-loaded (kinetostatic) state; false: from the unloaded nominal pose"},
   {"tensioner.preload", 110, R, Par, Binding::TensionerPreload, When::Tensioner, "Force", "-1", "",

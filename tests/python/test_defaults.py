@@ -84,7 +84,7 @@ def test_the_model_descriptions_start_from_the_table(table):
            f"clearance, or rigid contacts: {clearance['method']} (link)" in text
     assert float(chain["solver.tolerance"][0]) == link["tolerance"]
     step, text = chain["solver.step"]
-    assert float(step) == 0.0  # 0: the fidelity's own step, named in the description
+    assert float(step) == 0.0  # 0: the drive's own step, the default drive's named in the description
     named = {fidelity: float(value) for value, fidelity in re.findall(r"([0-9.e+-]+) s \((link|span)\)", text)}
     assert named == {"link": link["step_s"], "span": span["step_s"]}
     named = re.findall(r"([0-9.e+-]+) s \(link, a drive whose joints have clearance, or rigid contacts\)", text)

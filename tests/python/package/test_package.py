@@ -13,13 +13,17 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from harness import paths
+from harness import job, paths
 from harness.errors import UserError
-from harness.fmu import fmu
+from harness.fmu import export, fmu
 from harness.package import compare, inspect
 
 DIST = pathlib.Path(os.environ.get("CHAINDRIVE_DIST", paths.ROOT / "dist"))
 FMU_IDS = ("ChainDrive", "CVTChain")
+# a drive's own export, compared like the shipped FMUs: drive C of the test drives, a pump sprocket
+# between the crankshaft and the camshafts (tests/drives/README.md)
+EXPORTED_DRIVE = paths.ROOT / "tests" / "drives" / "diesel_pump.json"
+EXPORTED_TABLES = paths.ROOT / "tests" / "drives" / "tables" / "diesel_pump"
 
 
 def dist_fmu(fmu_id):
@@ -160,6 +164,38 @@ def test_cvtchain_built_from_its_sources_gives_the_linux64_bits(unpacked, source
 def test_source_build_refuses_the_sundials_methods_by_name(source_built, method):
     with pytest.raises(Exception, match=rf"solver.method '{method}' needs SUNDIALS"):
         compare.run_timing(source_built["ChainDrive"], 0.001, method)
+
+
+@pytest.fixture(scope="session")
+def exported(work):
+    """Drive C's export made from the packaged binaries (dist/ChainDrive.fmu's), unpacked."""
+    made = export.export(EXPORTED_DRIVE, work / "exports")
+    assert set(made.binaries) == {"linux64", "win64"} and made.sources, made.binaries
+    return compare.unpack(made.path, work / made.model_identifier)
+
+
+def test_an_exported_drive_gives_the_linux64_bits_on_win64_and_from_its_sources(exported, unpacked, source_built,
+                                                                                 master, work):
+    """One binary serves every drive, so the export's sources are ChainDrive's (checked) and the
+    source build's library, under the export's name, is the binary an importer builds from them."""
+    ours = {p.relative_to(exported): p.read_bytes() for p in (exported / "sources").rglob("*") if p.is_file()}
+    shipped = {p.relative_to(unpacked["ChainDrive"]): p.read_bytes()
+               for p in (unpacked["ChainDrive"] / "sources").rglob("*") if p.is_file()}
+    assert ours == shipped
+    config = job.run_config(drive=str(EXPORTED_DRIVE), tables=str(EXPORTED_TABLES), rpm=3000.0)
+    linux = compare.run_recorded(config, 0.010, exported)[0]
+    assert "hpPump.phi" in linux.outputs and "hpPump.tau" in linux.inputs
+    windows = compare.replay_on_windows(master, exported, linux, work)
+    assert_identical(compare.compare(linux, windows), "the diesel drive's export on win64")
+    from_sources = work / "exported-from-sources"
+    if not from_sources.exists():
+        shutil.copytree(exported, from_sources, ignore=shutil.ignore_patterns("binaries"))
+        built = source_built["ChainDrive"] / "binaries" / "linux64" / "ChainDrive.so"
+        target = from_sources / "binaries" / "linux64" / f"{compare.model_identifier(exported)}.so"
+        target.parent.mkdir(parents=True)
+        shutil.copyfile(built, target)
+    rebuilt = compare.run_recorded(config, 0.010, from_sources)[0]
+    assert_identical(compare.compare(linux, rebuilt), "the diesel drive's export built from its sources")
 
 
 def test_the_comparison_sees_one_flipped_bit(unpacked):
