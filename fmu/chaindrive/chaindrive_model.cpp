@@ -1,12 +1,44 @@
 #include "chaindrive_model.h"
 
 #include <cmath>
+#include <filesystem>
 #include <optional>
+#include <string>
 
 #include "description/drive_description.h"
 #include "interface/drive_interface.h"
+#include "span/span_model.h"
+#include "utf8_path.h"
 
 namespace chaindrive::fmu {
+
+namespace {
+
+constexpr const char* kCalibrationFile = "span_calibration.json";  // in resources/
+
+// The span model's calibration the FMU carries in resources/ (python -m harness export
+// --span-calibration), "" when it carries none: then the span fidelity takes the cache's or
+// calibrates, as an FMU without the file always did.
+std::string carriedCalibration(const std::string& resourceDir) {
+  if (resourceDir.empty()) return "";
+  const std::string file = resourceDir + "/" + kCalibrationFile;
+  std::error_code error;
+  return std::filesystem::is_regular_file(utf8Path(file), error) ? file : "";
+}
+
+// Where the span model's laws came from (the carried file, the cache, identified now and at what
+// cost); a carried file passed over (another key: the parameters changed the drive, or the file
+// is of other code) as a warning, since the instance then paid for the calibration.
+void logCalibration(Host& host, const span::SpanModel& sm) {
+  for (const std::string& note : sm.notes) {
+    if (note.rfind("calibration: the file ", 0) == 0) host.log(fmi2Warning, "logStatusWarning", "span %s", note.c_str());
+    else if (note.rfind("calibration: key ", 0) == 0 || note.rfind("calibration: engagement laws ", 0) == 0 ||
+             note.rfind("calibration: none", 0) == 0)
+      host.log(fmi2OK, "logEvents", "span %s", note.c_str());
+  }
+}
+
+}  // namespace
 
 // ---- the interface ----
 
@@ -191,6 +223,7 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
   opt.jointModel = choices_.joints;
   opt.preload.enabled = params_.preload;
   opt.monitoredLink = params_.linkIndex;
+  opt.spanCalibrationFile = carriedCalibration(host_.resourceDir());
   return opt;
 }
 
@@ -198,6 +231,7 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
 void ChainDriveModel::startSimulation() {
   const SimulationOptions opt = simulationOptions();
   makeSimulation(opt);
+  if (const span::SpanModel* sm = sim_->spanModel()) logCalibration(host_, *sm);
   // the step and why (solver.step 0: the drive's own, run/drive_defaults.h)
   if (sim_->integratorFixedStep() > 0.0)
     host_.log(fmi2OK, "logEvents", "solver: %s, %s", choiceName(opt.integrator.method),

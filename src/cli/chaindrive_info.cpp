@@ -26,7 +26,8 @@ constexpr const char* kTool = "chaindrive-info";
 
 void usage() {
   std::puts(
-      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--calibrate] [--quiet]\n"
+      "usage: chaindrive-info [--drive FILE] [--geometry OUT.json] [--calibrate] [--span-calibration OUT.json]\n"
+      "                       [--quiet]\n"
       "       chaindrive-info --defaults [--drive FILE]\n"
       "       chaindrive-info [--drive FILE] --interface | --fmu-files DIR\n"
       "  Assembles the drive (default: the embedded default drive), prints the closure and pose\n"
@@ -34,6 +35,10 @@ void usage() {
       "  --calibrate calibrates the drive's span model from its link model's statics (or takes the\n"
       "  calibration from the cache, src/span/calibration_cache.h) and prints what it identified, its\n"
       "  cost and its cache file.\n"
+      "  --span-calibration writes that calibration (from the cache, else calibrated now) to OUT.json\n"
+      "  in the cache's format with its key: the file an FMU carries in resources/span_calibration.json\n"
+      "  so that its span fidelity does not calibrate at instantiation (python -m harness export\n"
+      "  --span-calibration).\n"
       "  --defaults prints the solver defaults of every entry point per scene and fidelity as JSON\n"
       "  (the one table, src/run/defaults.h: method, step [s], tolerance); the timing rows with the\n"
       "  steps of the drive (default: the default drive's, the table's), each with its stability\n"
@@ -50,6 +55,7 @@ struct InfoArguments {
   bool quiet = false;
   bool defaults = false;  // print the defaults table instead
   bool calibrate = false;  // calibrate the span model and print the calibration
+  std::string spanCalibration;  // and write it into this file
   bool interface = false;  // print the FMU interface
   std::string fmuFiles;    // write the FMU's model description and resources into this folder
 };
@@ -65,6 +71,7 @@ InfoArguments parseArguments(cli::Arguments& args) {
     else if (a == "--quiet") r.quiet = true;
     else if (a == "--defaults") r.defaults = true;
     else if (a == "--calibrate") r.calibrate = true;
+    else if (a == "--span-calibration" && args.hasValue()) r.spanCalibration = args.value();
     else if (a == "--interface") r.interface = true;
     else if (a == "--fmu-files" && args.hasValue()) r.fmuFiles = args.value();
     else throw std::invalid_argument("unknown argument '" + a + "'");
@@ -184,13 +191,15 @@ void writeGeometry(const Model& m, const std::string& path) {
   std::ofstream(path) << g.dump(1) << "\n";
 }
 
-// The span model's calibration: its notes (laws, residuals, cost, cache file).
-void printCalibration(const Model& m) {
+// The span model's calibration: its notes (laws, residuals, cost, cache file), and the file it
+// is written to when `out` names one.
+void printCalibration(const Model& m, const std::string& out) {
   span::SpanModel sm = span::assembleSpanModel(m, false);
   const double wall0 = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
   bool fromCache = false;
   std::string file;
-  span::calibrateSpanModel(sm, &fromCache, &file);
+  if (out.empty()) span::calibrateSpanModel(sm, &fromCache, &file);
+  else fromCache = span::writeCalibrationFile(sm, out) == span::CalibrationOrigin::Cache;
   const double cpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC - wall0;
   for (const std::string& note : sm.notes)
     if (note.rfind("calibration: ", 0) == 0) std::printf("%s\n", note.c_str());
@@ -266,7 +275,7 @@ int run(const InfoArguments& r) {
   const Model m = assemble(desc);
   if (!r.quiet) printReport(m);
   if (!r.geometry.empty()) writeGeometry(m, r.geometry);
-  if (r.calibrate) printCalibration(m);
+  if (r.calibrate || !r.spanCalibration.empty()) printCalibration(m, r.spanCalibration);
   return 0;
 }
 

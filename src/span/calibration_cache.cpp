@@ -1,8 +1,10 @@
 #include "span/calibration_cache.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -35,6 +37,14 @@ std::string hex(double x) {
   return s;
 }
 
+std::string bits(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  char s[24];
+  std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(b));
+  return s;
+}
+
 json hexArray(const std::vector<double>& v) {
   json a = json::array();
   for (double x : v) a.push_back(hex(x));
@@ -58,13 +68,19 @@ json toJson(const SpanCalibration& c, const std::string& key) {
           {"cpuSeconds", c.cpuSeconds}};
 }
 
-// The calibration in the file, if it is one of this key for this many spans.
-bool readCalibration(const std::string& file, const std::string& key, std::size_t spans, SpanCalibration& c) {
+// The calibration in the file, if it is one of this key for this many spans; else why not ("" when
+// it is).
+std::string readCalibration(const std::string& file, const std::string& key, std::size_t spans, SpanCalibration& c) {
   std::ifstream in(utf8Path(file), std::ios::binary);
-  if (!in) return false;
+  if (!in) return "no such file, or not readable";
   try {
     const json j = json::parse(in);
-    if (j.at("format") != kFormat || j.at("key") != key || j.at("laws").size() != spans) return false;
+    if (j.at("format") != kFormat) return "format " + j.at("format").dump() + ", not " + std::to_string(kFormat);
+    if (j.at("key") != key)
+      return "key " + j.at("key").dump() + ", not this drive's \"" + key + "\" (another drive, other parameter " +
+             "overrides or other code)";
+    if (j.at("laws").size() != spans)
+      return std::to_string(j.at("laws").size()) + " laws for " + std::to_string(spans) + " spans";
     for (const json& law : j.at("laws"))
       c.laws.push_back(EngagementLaw{fromHex(law.at("stretch_m")), fromHex(law.at("tension_N")),
                                      fromHex(law.at("energy_J"))});
@@ -75,10 +91,10 @@ bool readCalibration(const std::string& file, const std::string& key, std::size_
     c.leverRatioMin = fromHex(j.at("leverRatioMin"));
     c.leverRatioMax = fromHex(j.at("leverRatioMax"));
     c.cpuSeconds = j.at("cpuSeconds");
-    return true;
-  } catch (const json::exception&) {
+    return "";
+  } catch (const json::exception& e) {
     c = SpanCalibration{};  // a damaged file: calibrate afresh
-    return false;
+    return std::string("not a calibration (") + e.what() + ")";
   }
 }
 
@@ -102,9 +118,10 @@ bool writeCalibration(const std::string& dir, const std::string& file, const jso
 
 std::string calibrationKey(const Model& m) {
   const TensionerDesc& t = m.description.tensioner;
-  // the FMU's parameters that override the description
-  const std::string overrides = hex(t.preload) + " " + hex(t.stiffness) + " " + hex(t.damping) + " " +
-                                hex(t.dampingExtension) + " " + hex(t.hydraulic.oilTemperature);
+  // the FMU's parameters that override the description, by their bits (printf's %a differs
+  // between C libraries: a Windows binary would miss the calibration a Linux tool wrote)
+  const std::string overrides = bits(t.preload) + " " + bits(t.stiffness) + " " + bits(t.damping) + " " +
+                                bits(t.dampingExtension) + " " + bits(t.hydraulic.oilTemperature);
   char key[40];
   std::snprintf(key, sizeof key, "%016llx",
                 static_cast<unsigned long long>(fnv1a(m.description.canonicalText + "|" + overrides + "|" +
@@ -126,30 +143,69 @@ std::string calibrationCacheDir() {
 #endif
 }
 
-void calibrateSpanModel(SpanModel& sm, bool* fromCache, std::string* file) {
-  const std::string key = calibrationKey(*sm.links), dir = calibrationCacheDir();
-  const std::string path = dir.empty() ? "" : dir + "/span-" + key + ".json";
-  SpanCalibration c;
-  const bool cached = !path.empty() && readCalibration(path, key, sm.spans.size(), c);
+namespace {
+
+// calibrateSpanModel, the calibration itself in c.
+CalibrationOrigin calibrate(SpanModel& sm, const std::string& file, SpanCalibration& c, std::string* path) {
+  const std::string key = calibrationKey(*sm.links);
+  if (!file.empty()) {
+    const std::string why = readCalibration(file, key, sm.spans.size(), c);
+    if (why.empty()) {
+      applyCalibration(sm, c);
+      for (const std::string& line : describeCalibration(sm, c)) sm.notes.push_back("calibration: " + line);
+      sm.notes.push_back("calibration: key " + key + ", from the file " + file);
+      if (path) *path = file;
+      return CalibrationOrigin::File;
+    }
+    sm.notes.push_back("calibration: the file " + file + " passed over: " + why);
+  }
+  const std::string dir = calibrationCacheDir();
+  const std::string cacheFile = dir.empty() ? "" : dir + "/span-" + key + ".json";
+  const bool cached = !cacheFile.empty() && readCalibration(cacheFile, key, sm.spans.size(), c).empty();
   if (!cached) {
     try {
       c = identifySpanLaws(sm);
     } catch (const std::runtime_error& e) {  // a drive whose statics leave spans slack: no laws
       sm.notes.push_back(std::string("calibration: none (") + e.what() + "); the spans keep the joints' stiffness");
-      if (fromCache) *fromCache = false;
-      if (file) file->clear();
-      return;
+      if (path) path->clear();
+      return CalibrationOrigin::None;
     }
   }
   applyCalibration(sm, c);
   for (const std::string& line : describeCalibration(sm, c)) sm.notes.push_back("calibration: " + line);
-  const bool written = !cached && !path.empty() && writeCalibration(dir, path, toJson(c, key));
-  sm.notes.push_back("calibration: key " + key + (cached ? ", from the cache " + path
-                                                  : written ? ", written to the cache " + path
+  const bool written = !cached && !cacheFile.empty() && writeCalibration(dir, cacheFile, toJson(c, key));
+  sm.notes.push_back("calibration: key " + key + (cached ? ", from the cache " + cacheFile
+                                                  : written ? ", written to the cache " + cacheFile
                                                             : ", not cached (" + (dir.empty() ? std::string("no cache folder")
-                                                                                             : "cannot write " + path) + ")"));
-  if (fromCache) *fromCache = cached;
-  if (file) *file = path;
+                                                                                             : "cannot write " + cacheFile) + ")"));
+  if (path) *path = cacheFile;
+  return cached ? CalibrationOrigin::Cache : CalibrationOrigin::Identified;
+}
+
+}  // namespace
+
+CalibrationOrigin calibrateSpanModel(SpanModel& sm, const std::string& file, std::string* path) {
+  SpanCalibration c;
+  return calibrate(sm, file, c, path);
+}
+
+void calibrateSpanModel(SpanModel& sm, bool* fromCache, std::string* file) {
+  SpanCalibration c;
+  const CalibrationOrigin origin = calibrate(sm, "", c, file);
+  if (fromCache) *fromCache = origin == CalibrationOrigin::Cache;
+}
+
+CalibrationOrigin writeCalibrationFile(SpanModel& sm, const std::string& file) {
+  SpanCalibration c;
+  const CalibrationOrigin origin = calibrate(sm, "", c, nullptr);
+  if (origin == CalibrationOrigin::None)
+    throw std::runtime_error("the span model of this drive cannot be calibrated: " + sm.notes.back());
+  const std::size_t slash = file.find_last_of("/\\");
+  const std::string dir = slash == std::string::npos ? "." : file.substr(0, std::max<std::size_t>(slash, 1));
+  if (!writeCalibration(dir, file, toJson(c, calibrationKey(*sm.links))))
+    throw std::runtime_error("cannot write " + file);
+  sm.notes.push_back("calibration: written to " + file);
+  return origin;
 }
 
 }  // namespace chaindrive::span

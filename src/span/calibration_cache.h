@@ -5,6 +5,10 @@
 // The folder: $CHAINDRIVE_CACHE_DIR, else $XDG_CACHE_HOME/chaindrive, else ~/.cache/chaindrive
 // (%LOCALAPPDATA%\chaindrive on Windows); "none" or an unwritable folder: no cache (the
 // calibration runs each time the span model is assembled).
+// A read-only calibration file of the same format (an exported FMU's resources/
+// span_calibration.json, written by chaindrive-info --span-calibration) is looked in first: taken
+// when its key is the model's, passed over with a note otherwise (another drive, other parameter
+// overrides, other code, a damaged file).
 #pragma once
 
 #include <string>
@@ -19,8 +23,23 @@ std::string calibrationKey(const Model& m);
 /// The cache folder ("" when there is none).
 std::string calibrationCacheDir();
 
-/// Calibrates sm (assembled without laws) from the cache or by identification (then written to
-/// the cache), puts the laws in and notes what it did. `fromCache` and `file` say where it came from.
+/// Where a calibration came from.
+enum class CalibrationOrigin { File, Cache, Identified, None };
+
+/// Calibrates sm (assembled without laws) from the read-only `file` when it holds this model's
+/// key ("": none), else from the cache, else by identification (then written to the cache); puts
+/// the laws in and notes what it did, a file passed over and why. Returns where the laws came
+/// from (None: the identification failed, the spans keep the joints' stiffness); `path` receives
+/// the file read or the cache file ("" when none).
+CalibrationOrigin calibrateSpanModel(SpanModel& sm, const std::string& file, std::string* path = nullptr);
+
+/// The same without a read-only file; `fromCache` says whether the cache held it.
 void calibrateSpanModel(SpanModel& sm, bool* fromCache = nullptr, std::string* file = nullptr);
+
+/// Writes sm's calibration (from the cache, else identified and written to the cache too) into
+/// `file` in the cache's format with its key: the read-only file an FMU carries. Notes what it
+/// did in sm.notes and returns where the calibration came from (Cache or Identified); throws
+/// std::runtime_error when the drive cannot be calibrated or the file cannot be written.
+CalibrationOrigin writeCalibrationFile(SpanModel& sm, const std::string& file);
 
 }  // namespace chaindrive::span

@@ -20,9 +20,15 @@ namespace chaindrive::span {
 namespace {
 
 constexpr double kMinTension = 30.0;  // [N] a nearly slack span sags: its stretch is no law's
-// load torques on every free sprocket [N m] and supply pressures of a hydraulic chamber [Pa]
+// load torques on every loaded sprocket [N m] and supply pressures of a hydraulic chamber [Pa]
 constexpr double kLoads[] = {-5.0, 0.0, 5.0, 10.0, 20.0, 40.0};
+constexpr int kLevels = static_cast<int>(sizeof kLoads / sizeof kLoads[0]);
+constexpr int kReference = 3;         // the others' level (10 N m) while one sprocket takes its levels
 constexpr double kSupplies[] = {1e5, 3e5, 10e5, 20e5, 35e5};
+// The largest full grid taken whole, in poses times the chain's links cubed (each Newton
+// iteration of a pose factors the link model's dense stiffness, three coordinates a link): the
+// default drive's, 36 rows at 5 supply pressures with 120 links, about 20 s of CPU.
+constexpr double kFullGridWork = 180.0 * 120.0 * 120.0 * 120.0;
 constexpr int kNodes = 6;             // law nodes
 
 // The link model's span tensions at its state y: the mean joint tension over the links on each
@@ -118,32 +124,93 @@ EngagementLaw fitLaw(const std::vector<double>& T, const std::vector<double>& e,
   return law;
 }
 
-// The loads of pose `code`: a load of kLoads on each free sprocket (digits of code in base 4)
-// and a supply pressure.
-InputValues poseInputs(const Model& m, const std::vector<int>& loaded, int code, double supply) {
+// The loads of a pose: its row of load torques on the loaded sprockets, and a supply pressure.
+InputValues poseInputs(const Model& m, const std::vector<int>& loaded, const std::vector<double>& loads,
+                       double supply) {
   InputValues in;
   in.loadTorque.assign(m.rotors.size(), 0.0);
-  const int nLoads = static_cast<int>(sizeof kLoads / sizeof kLoads[0]);
-  for (int r : loaded) {
-    in.loadTorque[r] = kLoads[code % nLoads];
-    code /= nLoads;
-  }
+  for (std::size_t k = 0; k < loaded.size(); ++k) in.loadTorque[loaded[k]] = loads[k];
   in.supplyPressure = supply;
   return in;
 }
 
 }  // namespace
 
+std::vector<std::vector<double>> fullLoadGrid(int loadedSprockets) {
+  int combos = 1;
+  for (int k = 0; k < loadedSprockets; ++k) combos *= kLevels;
+  std::vector<std::vector<double>> rows;
+  for (int code = 0; code < combos; ++code) {
+    std::vector<double> row;
+    for (int k = 0, c = code; k < loadedSprockets; ++k, c /= kLevels) row.push_back(kLoads[c % kLevels]);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Why these poses: a span's tension is the slack span's (the tensioner's, set by the supply
+// pressure) plus the loads of the sprockets before it over their radii, and each span's law is
+// fitted over its own tension. The diagonal takes every partial sum of the loads, so every
+// span's tension, from its smallest to its largest (the full grid's extremes are diagonal
+// poses); one sprocket at a time moves the tensions of the spans after it against those before
+// it, so that a span's tension is not tied to its neighbours' (with the diagonal alone the fit
+// would give a span the part of its stretch that follows its neighbours). A random design (a
+// Latin hypercube) would take each sprocket's levels equally often but not the partial sums:
+// their extremes, where the laws' stiffness at the top is fitted, would come rarely.
+std::vector<std::vector<double>> linearLoadDesign(int loadedSprockets) {
+  std::vector<std::vector<double>> rows;
+  for (int level = 0; level < kLevels; ++level) rows.emplace_back(loadedSprockets, kLoads[level]);
+  for (int k = 0; k < loadedSprockets; ++k)
+    for (int level = 0; level < kLevels; ++level) {
+      if (level == kReference) continue;  // (on the diagonal)
+      std::vector<double> row(loadedSprockets, kLoads[kReference]);
+      row[k] = kLoads[level];
+      rows.push_back(row);
+    }
+  return rows;
+}
+
+// The full grid where it is no larger than the linear design (up to one loaded sprocket), and for
+// two loaded sprockets where it costs no more than the default drive's (kFullGridWork: the
+// default drive keeps the calibration its figures were made with); the linear design otherwise
+// (from three loaded sprockets always: 6^n rows).
+std::vector<std::vector<double>> calibrationLoads(int loadedSprockets, int supplyPressures, int links) {
+  if (loadedSprockets <= 1) return fullLoadGrid(loadedSprockets);
+  const double side = links;  // (products of integers: exact, whatever the C library's pow)
+  const double work = kLevels * kLevels * supplyPressures * side * side * side;
+  return loadedSprockets == 2 && work <= kFullGridWork ? fullLoadGrid(loadedSprockets) : linearLoadDesign(loadedSprockets);
+}
+
+std::vector<double> calibrationSupplies(const Model& m) {
+  if (!m.tensioner.hydraulicChamber()) return {m.tensioner.hydraulic.supplyPressure};
+  return std::vector<double>(std::begin(kSupplies), std::end(kSupplies));
+}
+
+std::vector<int> loadedSprockets(const Model& m) {
+  std::vector<int> loaded;
+  for (std::size_t r = 0; r < m.rotors.size(); ++r) {
+    if (!m.rotors[r].isSprocket || m.rotors[r].prescribed) continue;
+    const int s = m.description.sprocketIndex(m.rotors[r].name);
+    if (s >= 0 && m.description.sprockets[s].loaded) loaded.push_back(static_cast<int>(r));
+  }
+  return loaded;
+}
+
 SpanCalibration identifySpanLaws(const SpanModel& sm) {
+  const Model& m = *sm.links;
+  return identifySpanLaws(sm, calibrationLoads(static_cast<int>(loadedSprockets(m).size()),
+                                               static_cast<int>(calibrationSupplies(m).size()), m.chain.links));
+}
+
+SpanCalibration identifySpanLaws(const SpanModel& sm, const std::vector<std::vector<double>>& loads) {
   const std::clock_t t0 = std::clock();
   const Model& m = *sm.links;
-  std::vector<int> loaded;
-  for (std::size_t r = 0; r < m.rotors.size(); ++r)
-    if (m.rotors[r].isSprocket && !m.rotors[r].prescribed) loaded.push_back(static_cast<int>(r));
-  std::vector<double> supplies = {m.tensioner.hydraulic.supplyPressure};
-  if (m.tensioner.hydraulicChamber()) supplies.assign(std::begin(kSupplies), std::end(kSupplies));
-  int combos = 1;
-  for (std::size_t k = 0; k < loaded.size(); ++k) combos *= static_cast<int>(sizeof kLoads / sizeof kLoads[0]);
+  const std::vector<int> loaded = loadedSprockets(m);
+  for (const std::vector<double>& row : loads)
+    if (row.size() != loaded.size())
+      throw std::invalid_argument("span calibration: a pose with " + std::to_string(row.size()) + " loads for " +
+                                  std::to_string(loaded.size()) + " loaded sprockets");
+  const std::vector<double> supplies = calibrationSupplies(m);
   const std::size_t ns = sm.spans.size();
   std::vector<std::vector<double>> T(ns), e(ns);
   SpanCalibration c;
@@ -151,8 +218,8 @@ SpanCalibration identifySpanLaws(const SpanModel& sm) {
   c.leverRatioMax.assign(sm.tables.size(), -1e300);
   std::vector<double> previous;  // the last pose solved: the next solve starts there
   for (double supply : supplies)
-    for (int code = 0; code < combos; ++code) {
-      const InputValues in = poseInputs(m, loaded, code, supply);
+    for (const std::vector<double>& row : loads) {
+      const InputValues in = poseInputs(m, loaded, row, supply);
       PreloadReport report;
       std::vector<double> yLink;
       try {
