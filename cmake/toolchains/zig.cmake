@@ -31,12 +31,26 @@ if(NOT DEFINED ENV{CHAINDRIVE_ZIG})
 endif()
 set(ZIG_EXECUTABLE "$ENV{CHAINDRIVE_ZIG}")
 
-# CMake wants one program per tool: small scripts that call zig's with the target
+# CMake wants one program per tool: small scripts that call zig's with the target.
+# zig builds the target's C runtime and libc++ from source the first time a link needs them (on
+# two cores some 15 minutes for Windows, one source at a time), once per optimisation mode, debug
+# information and position-independence: CMake's compiler checks link with no -O and no -s (zig's
+# Debug mode, a runtime with debug information), the FMUs with -O3 and -s (CMakeLists.txt), so a
+# fresh zig cache built every runtime twice (a cold win64 build: 2072 s on 2 cores, 1003 s with
+# this). With -O2 -s (and -fPIC on Linux) in front of CMake's flags the checks link against the
+# runtime the FMUs' link uses. The FMUs' code is unchanged: zig compiles -O2 and -O3 alike (its
+# ReleaseFast), CMake gives them -fPIC already, and -s only leaves out the debug information the
+# link stripped before (the win64 DLL's .text bit-identical; only its exception tables' call-site
+# ranges, laid out without debug locations, differ).
+set(_zig_runtime_flags "-O2 -s")
+if(NOT ZIG_TARGET MATCHES "windows")
+  string(APPEND _zig_runtime_flags " -fPIC")
+endif()
 set(_zig_tools ${CMAKE_BINARY_DIR}/zig-tools)
 foreach(tool cc c++ ar ranlib)
   set(_args "${tool}")
   if(tool STREQUAL "cc" OR tool STREQUAL "c++")
-    set(_args "${tool} -target ${ZIG_TARGET}")
+    set(_args "${tool} -target ${ZIG_TARGET} ${_zig_runtime_flags}")
   endif()
   file(WRITE ${_zig_tools}/${tool} "#!/bin/sh\nexec \"${ZIG_EXECUTABLE}\" ${_args} \"$@\"\n")
   file(CHMOD ${_zig_tools}/${tool} PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE

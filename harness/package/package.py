@@ -16,6 +16,7 @@ import os
 import pathlib
 import shutil
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 from fmpy.validation import validate_fmu
 
@@ -37,7 +38,10 @@ def add_arguments(ap):
                     help="folder of the cross builds (default: package/ in the build directory)")
     ap.add_argument("--platforms", nargs="+", choices=sorted(TARGETS), default=sorted(TARGETS),
                     help="the platforms' binaries to build (default: all)")
-    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel compile jobs")
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel compile jobs (per platform)")
+    ap.add_argument("--binaries-only", action="store_true",
+                    help="build the platforms' binaries into --build and stop (./run.sh test builds them beside "
+                    "its native build, then packages)")
     ap.add_argument("--compare", action="store_true",
                     help="then run each FMU with every binary (win64 under wine) and a binary built from its "
                     "sources, and compare the outputs of every step bit for bit")
@@ -46,12 +50,10 @@ def add_arguments(ap):
 def run(args):
     start = time.monotonic()
     args.build.mkdir(parents=True, exist_ok=True)
-    built = {}  # platform: {FMU id: binary}
-    for platform in args.platforms:
-        t0 = time.monotonic()
-        print(f"== {platform}")
-        built[platform] = binaries.build(TARGETS[platform], args.build, args.jobs)
-        print(f"   built in {time.monotonic() - t0:.0f} s")
+    built = build_platforms(args.platforms, args.build, args.jobs)  # {platform: {FMU id: binary}}
+    if args.binaries_only:
+        print(f"\nbinaries built in {time.monotonic() - start:.0f} s")
+        return 0
     failures = 0
     for fmu_id in FMUS:
         fmu_file = assemble(fmu_id, built, args.build / "stage" / fmu_id, args.out)
@@ -60,6 +62,25 @@ def run(args):
     if args.compare:
         failures += compare_platforms(args.out, args.build / "compare", args.jobs)
     return 1 if failures else 0
+
+
+def build_platforms(platforms, build_root, jobs):
+    """Builds every platform's binaries at the same time; returns {platform: {FMU id: binary}}.
+    Most of a first build is zig compiling the platform's C runtime and libc++, one source at a
+    time: two platforms side by side keep two cores busy. Each platform's lines are printed whole."""
+    def build_one(platform):
+        t0 = time.monotonic()
+        lines = [f"== {platform}"]
+        binaries_of = binaries.build(TARGETS[platform], build_root, jobs, log=lines.append)
+        lines.append(f"   built in {time.monotonic() - t0:.0f} s")
+        return binaries_of, lines
+
+    built = {}
+    with ThreadPoolExecutor(max_workers=len(platforms)) as pool:
+        for platform, (binaries_of, lines) in zip(platforms, pool.map(build_one, platforms)):
+            print("\n".join(lines))
+            built[platform] = binaries_of
+    return built
 
 
 def assemble(fmu_id, built, stage, out):
