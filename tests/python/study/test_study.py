@@ -18,7 +18,7 @@ FAILURE_KINDS = set(methods.KIND_CODES) - {"timeout"}
 def quick(tmp_path_factory):
     out = tmp_path_factory.mktemp("study")
     p = subprocess.run([sys.executable, "-m", "harness", "study", "--quick", "--jobs", "2", "--out", str(out)],
-                       cwd=paths.ROOT, capture_output=True, text=True, timeout=600)
+                       cwd=paths.ROOT, capture_output=True, text=True, timeout=2400)
     assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
     return out, json.loads((out / "results.json").read_text())
 
