@@ -70,6 +70,16 @@ def cache_root():
     return pathlib.Path(xdg) / "chaindrive" / "deps"
 
 
+def zig_environment():
+    """The environment of every zig run: zig's cache (ZIG_GLOBAL_CACHE_DIR, unless set) kept with
+    the cross-built dependencies, not in zig's default place: on a fresh machine most of a cross
+    build's time is zig compiling each platform's C runtime and libc++ into it (some 750 s for
+    win64's MinGW runtime on a busy 2-core machine), and it belongs with what is cached here."""
+    env = dict(os.environ)
+    env.setdefault("ZIG_GLOBAL_CACHE_DIR", str(cache_root() / "zig-cache"))
+    return env
+
+
 def prefix(target, log=print):
     """The dependency prefix of `target` (a Target), built if it is not in the cache."""
     if target.platform == "linux64":
@@ -150,7 +160,7 @@ def cmake_build(target, source, build, dest, options):
 def run_logged(cmd, log_file):
     """Runs cmd with its output into log_file; on failure, raises with the output's tail."""
     with open(log_file, "a") as out:
-        p = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT)
+        p = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, env=zig_environment())
     if p.returncode != 0:
         tail = "".join(open(log_file).readlines()[-30:])
         raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{tail}")
