@@ -49,6 +49,13 @@ inline std::vector<std::string> problemsOf(const std::function<void(nlohmann::js
   return {};
 }
 
+// A description's problems one per line, for a failed assertion's message.
+inline std::string problemLines(const std::vector<std::string>& problems) {
+  std::string lines;
+  for (const auto& problem : problems) lines += problem + "\n";
+  return lines;
+}
+
 inline nlohmann::json& sprocketJson(nlohmann::json& j, const std::string& name) {
   for (auto& s : j["sprockets"])
     if (s["name"] == name) return s;

@@ -18,12 +18,6 @@ bool mentions(const std::vector<std::string>& problems, const std::string& field
   return false;
 }
 
-std::string joined(const std::vector<std::string>& p) {
-  std::string s;
-  for (const auto& x : p) s += x + "\n";
-  return s;
-}
-
 }  // namespace
 
 TEST(Description, DefaultDriveIsValid) {
@@ -36,28 +30,28 @@ TEST(Description, DefaultDriveIsValid) {
 TEST(Description, NegativeMassNamesTheFieldAndRange) {
   const auto p = problemsOf([](json& j) { j["chain"]["linkMass"] = -0.001; });
   ASSERT_FALSE(p.empty());
-  EXPECT_TRUE(mentions(p, "chain.linkMass", "out of range")) << joined(p);
-  EXPECT_TRUE(mentions(p, "chain.linkMass", "kg")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.linkMass", "out of range")) << problemLines(p);
+  EXPECT_TRUE(mentions(p, "chain.linkMass", "kg")) << problemLines(p);
 }
 
 TEST(Description, UnknownKeyIsReported) {
   const auto p = problemsOf([](json& j) { j["chain"]["pitchh"] = 0.008; });
-  EXPECT_TRUE(mentions(p, "chain.pitchh", "unknown key")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.pitchh", "unknown key")) << problemLines(p);
 }
 
 TEST(Description, MissingRequiredField) {
   const auto p = problemsOf([](json& j) { j["sprockets"][1].erase("inertia"); });
-  EXPECT_TRUE(mentions(p, "sprockets[1].inertia", "missing")) << joined(p);
+  EXPECT_TRUE(mentions(p, "sprockets[1].inertia", "missing")) << problemLines(p);
 }
 
 TEST(Description, WrongTypeIsReported) {
   const auto p = problemsOf([](json& j) { j["chain"]["numberOfLinks"] = "120"; });
-  EXPECT_TRUE(mentions(p, "chain.numberOfLinks", "integer")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.numberOfLinks", "integer")) << problemLines(p);
 }
 
 TEST(Description, OddNumberOfLinks) {
   const auto p = problemsOf([](json& j) { j["chain"]["numberOfLinks"] = 121; });
-  EXPECT_TRUE(mentions(p, "chain.numberOfLinks", "even")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.numberOfLinks", "even")) << problemLines(p);
 }
 
 TEST(Description, OverlappingSprockets) {
@@ -66,30 +60,30 @@ TEST(Description, OverlappingSprockets) {
     auto& exhaust = sprocketJson(j, "camshaftExhaust");
     intake["center"][0] = exhaust["center"][0].get<double>() + 0.1;
   });
-  EXPECT_TRUE(mentions(p, "sprockets[2].center", "overlaps")) << joined(p);
+  EXPECT_TRUE(mentions(p, "sprockets[2].center", "overlaps")) << problemLines(p);
 }
 
 TEST(Description, ChainThatCannotClose) {
   const auto p = problemsOf([](json& j) { j["chain"]["numberOfLinks"] = 110; });
-  ASSERT_TRUE(mentions(p, "chain.numberOfLinks", "cannot close")) << joined(p);
+  ASSERT_TRUE(mentions(p, "chain.numberOfLinks", "cannot close")) << problemLines(p);
   // the message states how many links the layout holds
-  EXPECT_TRUE(mentions(p, "chain.numberOfLinks", "holds between")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.numberOfLinks", "holds between")) << problemLines(p);
 }
 
 TEST(Description, UnknownRouteElementAndUnusedSprocket) {
   const auto p = problemsOf([](json& j) { j["chain"]["route"][2] = "camshaftExaust"; });
-  EXPECT_TRUE(mentions(p, "chain.route[2]", "neither a sprocket nor a guide")) << joined(p);
-  EXPECT_TRUE(mentions(p, "sprockets[1]", "not in chain.route")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.route[2]", "neither a sprocket nor a guide")) << problemLines(p);
+  EXPECT_TRUE(mentions(p, "sprockets[1]", "not in chain.route")) << problemLines(p);
 }
 
 TEST(Description, TensionerOnAFixedGuide) {
   const auto p = problemsOf([](json& j) { j["tensioner"]["guide"] = "fixedGuide"; });
-  EXPECT_TRUE(mentions(p, "tensioner.guide", "pivoting")) << joined(p);
+  EXPECT_TRUE(mentions(p, "tensioner.guide", "pivoting")) << problemLines(p);
 }
 
 TEST(Description, AngleGivenTwice) {
   const auto p = problemsOf([](json& j) { guideJson(j, "fixedGuide")["profile"][0]["startAngle"] = 0.1; });
-  EXPECT_TRUE(mentions(p, "guides[1].profile[0].startAngle", "both")) << joined(p);
+  EXPECT_TRUE(mentions(p, "guides[1].profile[0].startAngle", "both")) << problemLines(p);
 }
 
 TEST(Description, EveryErrorIsReportedAtOnce) {
@@ -99,10 +93,10 @@ TEST(Description, EveryErrorIsReportedAtOnce) {
     j["sprockets"][0]["teeth"] = 3;
     j["contact"]["rollerSprocket"]["friction"] = 5.0;
   });
-  EXPECT_TRUE(mentions(p, "chain.linkMass")) << joined(p);
-  EXPECT_TRUE(mentions(p, "chain.joint.stiffness")) << joined(p);
-  EXPECT_TRUE(mentions(p, "sprockets[0].teeth", "6..200")) << joined(p);
-  EXPECT_TRUE(mentions(p, "contact.rollerSprocket.friction", "[0, 2]")) << joined(p);
+  EXPECT_TRUE(mentions(p, "chain.linkMass")) << problemLines(p);
+  EXPECT_TRUE(mentions(p, "chain.joint.stiffness")) << problemLines(p);
+  EXPECT_TRUE(mentions(p, "sprockets[0].teeth", "6..200")) << problemLines(p);
+  EXPECT_TRUE(mentions(p, "contact.rollerSprocket.friction", "[0, 2]")) << problemLines(p);
   EXPECT_GE(p.size(), 4u);
 }
 

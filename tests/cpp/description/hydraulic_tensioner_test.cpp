@@ -26,16 +26,10 @@ std::vector<std::string> problemsOfHydraulic(const std::function<void(json& hydr
   });
 }
 
-std::string joined(const std::vector<std::string>& p) {
-  std::string s;
-  for (const auto& x : p) s += x + "\n";
-  return s;
-}
-
 // One problem, starting with the field's path and naming the value and the range.
 void expectNamed(const std::vector<std::string>& p, const std::string& field, const std::string& value,
                  const std::string& range) {
-  ASSERT_EQ(p.size(), 1u) << joined(p);
+  ASSERT_EQ(p.size(), 1u) << problemLines(p);
   EXPECT_EQ(p[0].rfind(field + ": ", 0), 0u) << p[0];
   EXPECT_NE(p[0].find(value), std::string::npos) << p[0];
   EXPECT_NE(p[0].find(range), std::string::npos) << p[0];
@@ -82,7 +76,7 @@ TEST(HydraulicDescription, DefaultsAreValid) {
 
 TEST(HydraulicDescription, UnknownModelListsTheNames) {
   const auto p = problemsOf([](json& j) { j["tensioner"]["model"] = "pneumatic"; });
-  ASSERT_EQ(p.size(), 1u) << joined(p);
+  ASSERT_EQ(p.size(), 1u) << problemLines(p);
   EXPECT_EQ(p[0].rfind("tensioner.model: ", 0), 0u) << p[0];
   EXPECT_NE(p[0].find("spring-damper, hydraulic"), std::string::npos) << p[0];
 }
@@ -92,13 +86,13 @@ TEST(HydraulicDescription, FieldsOfTheOtherModelAreErrors) {
     test::useSpringDamperTensioner(j);
     j["tensioner"]["hydraulic"] = json::object();
   });
-  ASSERT_EQ(p.size(), 1u) << joined(p);
+  ASSERT_EQ(p.size(), 1u) << problemLines(p);
   EXPECT_EQ(p[0].rfind("tensioner.hydraulic: ", 0), 0u) << p[0];
   p = problemsOf([](json& j) {  // the hydraulic default drive with the spring-damper law's damping
     j["tensioner"]["damping"] = 3000.0;
     j["tensioner"]["dampingExtension"] = 300.0;
   });
-  EXPECT_EQ(p.size(), 2u) << joined(p);
+  EXPECT_EQ(p.size(), 2u) << problemLines(p);
   for (const auto& s : p) EXPECT_NE(s.find("applies to the model 'spring-damper' only"), std::string::npos) << s;
 }
 
@@ -152,17 +146,17 @@ TEST(HydraulicDescription, RelationsBetweenFieldsAreChecked) {
   auto p = problemsOfHydraulic([](json& h) { h["oil"] = {{"temperatureMin", 400.0}, {"temperatureMax", 350.0}}; });
   EXPECT_FALSE(p.empty());
   EXPECT_EQ(p[0].rfind("tensioner.hydraulic.oil.temperatureMax: 350 K must exceed temperatureMin 400 K", 0), 0u)
-      << joined(p);
+      << problemLines(p);
   p = problemsOfHydraulic([](json& h) { h["oil"] = {{"vogelC", 240.0}, {"temperatureMin", 230.0}}; });
   ASSERT_FALSE(p.empty());
   EXPECT_EQ(p[0].rfind("tensioner.hydraulic.oil.vogelC: 240 K must lie below temperatureMin 230 K", 0), 0u)
-      << joined(p);
+      << problemLines(p);
   // a 2 cm3 chamber on a 12 mm plunger empties 17.7 mm below the nominal stroke
   p = problemsOfHydraulic([](json& h) { h["strokeMin"] = -0.02; });
-  ASSERT_EQ(p.size(), 1u) << joined(p);
+  ASSERT_EQ(p.size(), 1u) << problemLines(p);
   EXPECT_EQ(p[0].rfind("tensioner.hydraulic.strokeMin: -0.02 m empties the chamber", 0), 0u) << p[0];
   EXPECT_NE(p[0].find("allowed > -0.0176839 m"), std::string::npos) << p[0];
   p = problemsOfHydraulic([](json& h) { h["checkValve"]["lift"] = 1.0; });
-  ASSERT_EQ(p.size(), 1u) << joined(p);
+  ASSERT_EQ(p.size(), 1u) << problemLines(p);
   EXPECT_EQ(p[0].rfind("tensioner.hydraulic.checkValve.lift: ", 0), 0u) << p[0];
 }

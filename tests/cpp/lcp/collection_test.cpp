@@ -106,8 +106,8 @@ const std::vector<CollectionCase>& collection() {
 // gtest prints the parameter by its file name
 void PrintTo(const CollectionCase& c, std::ostream* os) { *os << c.file << " (" << solverName(c.solver) << ")"; }
 
-}  // namespace
-
+// (the fixture and its test in the unnamed namespace too: a class of external linkage derived
+// from one with internal linkage is an error when the file is compiled in a batch with others)
 class LcpCollection : public ::testing::TestWithParam<CollectionCase> {};
 
 // Status, pivots and solution (or forces) as in the table; where solved, the error within the
@@ -160,6 +160,8 @@ INSTANTIATE_TEST_SUITE_P(LcpSiconos, LcpCollection, ::testing::ValuesIn(collecti
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return s;
                          });
+
+}  // namespace
 
 // The table covers every problem file of the three folders, each once with its solver
 // configuration, and nothing else (a new file must be added).
