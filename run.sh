@@ -124,8 +124,9 @@ build() {
 # FMI call sequences, tests/fuzz). Debug with -O1: Eigen's index and size assertions stay on (an
 # index past a row that stays inside the matrix's allocation is invisible to AddressSanitizer),
 # and -O1 keeps Eigen's inlining: the C++ tests take about 7 times the CPU time of the release
-# build. The stage takes about 7.5 minutes on 2 free cores (build 219 s, ctest 227 s; the fuzz
-# runs beside the other tests).
+# build. An earlier measurement gave 7.5 minutes on 2 free cores (build 219 s, ctest 227 s; the
+# fuzz runs beside the other tests); on a fresh machine with no compiler cache its build alone took
+# more than 13 minutes (docs/tests.md).
 sanitizer_stage() {
   # every report ends the process with a non-zero status (with -fno-sanitize-recover=all from
   # CMake): the test fails and so does this command; leaks are reported at exit (and by the fuzz
@@ -204,9 +205,11 @@ case "${1:-}" in
     echo "== packaging: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== Python tests"
     # the span model's calibrations (src/span/calibration_cache.h) kept beside the build, as ctest's;
-    # one worker per core (pytest-xdist), each test file on one worker (its module fixtures made once)
+    # one worker per core (pytest-xdist), each test file on one worker (its module fixtures made once),
+    # the files in the order collected: the slowest first (tests/python/conftest.py), not xdist's
+    # default of the files with the most tests first
     CHAINDRIVE_CACHE_DIR="${CHAINDRIVE_CACHE_DIR:-$CHAINDRIVE_BUILD/calibration-cache}" \
-      "$VENV/bin/python" -m pytest -q -n auto --dist loadfile --durations=15 tests/python "$@"
+      "$VENV/bin/python" -m pytest -q -n auto --dist loadfile --no-loadscope-reorder --durations=15 tests/python "$@"
     echo "== Python tests: $((SECONDS - stage)) s"
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
       (sanitizer_stage)
