@@ -2,6 +2,8 @@
 import pathlib
 import sys
 
+import pytest
+
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
 
 # The test files that take minutes, longest first (their time in ./run.sh test on a clean clone).
@@ -15,6 +17,12 @@ SLOW_FILES_FIRST = ("package/test_package.py", "study/test_study.py", "fmu/test_
 
 
 def pytest_collection_modifyitems(session, config, items):
+    here = pathlib.Path(__file__).parent
+    missing = [name for name in SLOW_FILES_FIRST if not (here / name).is_file()]
+    if missing:  # (a renamed file would quietly fall back to the end of the order)
+        raise pytest.UsageError(f"tests/python/conftest.py: SLOW_FILES_FIRST names {', '.join(missing)}, "
+                                "which is not a test file under tests/python")
+
     def rank(item):
         path = pathlib.Path(str(item.fspath)).as_posix()
         ranks = [i for i, name in enumerate(SLOW_FILES_FIRST) if path.endswith("/tests/python/" + name)]
