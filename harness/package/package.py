@@ -60,7 +60,7 @@ def run(args):
         failures += report(fmu_id, fmu_file, built)
     print(f"\npackaged in {time.monotonic() - start:.0f} s" + (f"; {failures} problems" if failures else ""))
     if args.compare:
-        failures += compare_platforms(args.out, args.build / "compare", args.jobs)
+        failures += compare_platforms(args.out, args.build / "compare")
     return 1 if failures else 0
 
 
@@ -139,18 +139,16 @@ COMPARISONS = [("ChainDrive", None, 0.030), ("ChainDrive", "fixed-verlet", 0.030
                ("ChainDrive", "arkode-erk", 0.005), ("ChainDrive", "cvode-bdf-klu", 0.003), ("CVTChain", None, 0.020)]
 
 
-def compare_platforms(dist, work, jobs):
+def compare_platforms(dist, work):
     """Prints, per FMU and method, whether the win64 binary (under wine) and the source build give
     the linux64 binary's bits at every step; returns the number of runs that do not."""
     print("\n== the same bits on every platform (every output after every 0.1 ms step)")
     with compare.wine(work / "wine"):
         master = compare.build_master(work)
-        unpacked, built = {}, {}
-        for fmu_id in FMUS:
-            unpacked[fmu_id] = compare.unpack(dist / f"{fmu_id}.fmu", work / fmu_id)
-            t0 = time.monotonic()
-            built[fmu_id] = compare.source_built(unpacked[fmu_id], work / f"{fmu_id}-sources", jobs)
-            print(f"   {fmu_id}: built from its sources by fmpy in {time.monotonic() - t0:.0f} s")
+        unpacked = {fmu_id: compare.unpack(dist / f"{fmu_id}.fmu", work / fmu_id) for fmu_id in FMUS}
+        t0 = time.monotonic()
+        built = compare.sources_built(unpacked, work)
+        print(f"   {', '.join(FMUS)}: built from their sources by fmpy in {time.monotonic() - t0:.0f} s")
         return sum(compare_runs(fmu_id, method, duration, unpacked[fmu_id], built[fmu_id], master, work)
                    for fmu_id, method, duration in COMPARISONS)
 

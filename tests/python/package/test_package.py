@@ -49,7 +49,7 @@ def unpacked(work):
 @pytest.fixture(scope="session")
 def source_built(unpacked, work):
     """{FMU: folder}: each FMU with its linux64 binary built by fmpy from sources/."""
-    return {f: compare.source_built(unpacked[f], work / f"{f}-sources") for f in FMU_IDS}
+    return compare.sources_built(unpacked, work)
 
 
 @pytest.fixture(scope="session")
