@@ -75,28 +75,12 @@ def zig_environment():
     the cross-built dependencies, not in zig's default place: on a fresh machine most of a cross
     build's time is zig compiling each platform's C runtime and libc++ into it (some 750 s for
     win64's MinGW runtime on a busy 2-core machine), and it belongs with what is cached here.
-    zig's library (ZIG_LIB_DIR, unless set) is named by a link in that cache: zig keys what it
-    compiled from its library by the library's path as given, so the runtimes built by the ziglang
-    of one checkout's virtual environment were compiled again for another's (a clean clone: a
-    tiny DLL's link 0 s with the first clone's library path, a miss with its own or a link's)."""
+    (It serves one installation of zig only: zig finds a runtime it compiled by its library's
+    files, and missed with the same library in another checkout's virtual environment, under a
+    link of the same name, and copied with its times kept.)"""
     env = dict(os.environ)
     env.setdefault("ZIG_GLOBAL_CACHE_DIR", str(cache_root() / "zig-cache"))
-    if "ZIG_LIB_DIR" not in env:
-        env["ZIG_LIB_DIR"] = str(stable_zig_lib())
     return env
-
-
-def stable_zig_lib():
-    """A link in the cache, named by zig's version, to this Python's ziglang library."""
-    import ziglang
-    lib = pathlib.Path(ziglang.__file__).parent / "lib"
-    link = cache_root() / f"zig-{zig_version()}-lib"
-    link.parent.mkdir(parents=True, exist_ok=True)
-    if not (link.is_symlink() and os.readlink(link) == str(lib)):
-        temporary = link.with_name(f"{link.name}.{os.getpid()}")
-        temporary.symlink_to(lib)
-        os.replace(temporary, link)  # (atomic: a zig run of another process never sees no link)
-    return link
 
 
 def prefix(target, log=print):
