@@ -126,9 +126,10 @@ build() {
 # index past a row that stays inside the matrix's allocation is invisible to AddressSanitizer),
 # and -O1 keeps Eigen's inlining: the C++ tests take about 7 times the CPU time of the release
 # build. -g1: line tables, all a report's stack needs (a batch of the core 99 CPU s against 118 s
-# with -g). The tests of tests/cpp/sanitizer_skip.txt, 287 of the release ctest's 359 CPU s, run
-# in the release build only: they run the same code for longer (simulated time, calibration
-# grids), and under the sanitizers they took most of the stage.
+# with -g). The tests of tests/cpp/sanitizer_skip.txt (the 15 longest of the release ctest, 287
+# of its 359 CPU s, and 9 of more than 30 s under the sanitizers) run in the release build only:
+# they run the same code for longer (simulated time, calibration grids), and under the
+# sanitizers they took most of the stage.
 sanitizer_stage() {
   # every report ends the process with a non-zero status (with -fno-sanitize-recover=all from
   # CMake): the test fails and so does this command; leaks are reported at exit (and by the fuzz
