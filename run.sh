@@ -33,7 +33,7 @@ VENV="${CHAINDRIVE_VENV:-$ROOT/.venv}"
 
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libeigen3-dev libsundials-dev libsuitesparse-dev
               nlohmann-json3-dev libgtest-dev python3 python3-venv python3-pip
-              libtbb12)  # libtbb12: the ecos co-simulation library of PyPI ecospy (tests/python/fmu/test_grid.py)
+              libtbb12 procps)  # procps: pgrep (run.sh); libtbb12: the ecos co-simulation library of PyPI ecospy (tests/python/fmu/test_grid.py)
 # the tests run the packaged FMUs' Windows binaries under wine (tests/python/package), from a
 # master program built with MinGW-w64's GCC (harness/package/compare.py)
 TEST_APT_PACKAGES=(wine64 gcc-mingw-w64-x86-64-win32)
@@ -84,15 +84,33 @@ build_ready() {
   [ -f "$BUILD_STAMP" ] && [ -f "$CHAINDRIVE_BUILD/ChainDrive.fmu" ] && [ "$(cat "$BUILD_STAMP")" = "$(build_inputs_hash)" ]
 }
 
+create_venv() {
+  if [ ! -x "$VENV/bin/python" ]; then
+    echo "== creating the Python environment $VENV"
+    python3 -m venv "$VENV"
+  fi
+}
+
+# The builds need of Python only fmpy's FMI 2 headers (CMakeLists.txt) and zig (the cross
+# builds): pyproject.toml's fmpy and ziglang first, without their dependencies (pip adds those
+# with the rest), so that every build can start while pip installs the rest
+build_python_ready() {
+  create_venv
+  "$VENV/bin/python" -c "import importlib.util as u; assert u.find_spec('fmpy') and u.find_spec('ziglang')" \
+    2>/dev/null && return 0
+  local pins
+  pins="$(grep -o '"\(fmpy\|ziglang\)==[^"]*"' pyproject.toml | tr -d '"' | tr '\n' ' ')"
+  echo "== installing $pins into $VENV (what the builds need of Python)"
+  # shellcheck disable=SC2086
+  "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps $pins
+}
+
 # $1: the package's optional dependencies to install (pyproject.toml), besides those installed before
 setup_python() {
   python_ready "$1" && return 0
   local first="" extras="$1" installed=""
-  if [ ! -x "$VENV/bin/python" ]; then
-    echo "== creating the Python environment $VENV"
-    python3 -m venv "$VENV"
-    first=1
-  fi
+  create_venv
+  [ -f "$PIP_STAMP" ] || first=1
   # the extras installed before stay: a later call that asks for fewer finds them in the stamp
   [ -f "$PIP_STAMP" ] && installed="$(sed -n 2p "$PIP_STAMP")"
   [ -n "$installed" ] && extras="$(echo "$installed,$1" | tr ',' '\n' | sort -u | paste -sd, -)"
@@ -111,11 +129,20 @@ setup_python() {
 }
 
 build() {
-  local hash first=""
-  hash="$(build_inputs_hash)"  # (before the build: a source changed meanwhile is built next time)
+  configure_build
+  compile_build
+}
+
+configure_build() {
+  local first=""
   [ -f "$CHAINDRIVE_BUILD/build.ninja" ] || first=" (the first build takes about 10 minutes on 2 cores)"
   echo "== building into $CHAINDRIVE_BUILD$first"
   cmake -S . -B "$CHAINDRIVE_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$VENV/bin/python" >/dev/null
+}
+
+compile_build() {
+  local hash
+  hash="$(build_inputs_hash)"  # (before the build: a source changed meanwhile is built next time)
   cmake --build "$CHAINDRIVE_BUILD" -j "$(nproc)"
   echo "$hash" > "$BUILD_STAMP"
 }
@@ -145,30 +172,56 @@ sanitizer_skip_list() {
   (IFS='|'; echo "${names[*]}")
 }
 
-sanitizer_stage() {
-  # every report ends the process with a non-zero status (with -fno-sanitize-recover=all from
-  # CMake): the test fails and so does this command; leaks are reported at exit (and by the fuzz
-  # after every few sequences); detect_stack_use_after_return costs some 15 % and finds
-  # references to dead locals
+# the sanitizers' options, for the build (GoogleTest's discovery runs the test program) and ctest:
+# every report ends the process with a non-zero status (with -fno-sanitize-recover=all from
+# CMake): the test fails and so does this command; leaks are reported at exit (and by the fuzz
+# after every few sequences); detect_stack_use_after_return costs some 15 % and finds
+# references to dead locals
+sanitizer_options() {
   export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:print_stacktrace=1:strict_string_checks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1"
   export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:report_error_type=1"
-  local start=$SECONDS
-  echo "== sanitizer stage: building into $SANITIZE_BUILD"
+}
+
+# (the test programs only; the build runs the sanitized test binary too: GoogleTest's test discovery)
+sanitizer_build() {
+  sanitizer_options
   cmake -S . -B "$SANITIZE_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
         -DCMAKE_C_FLAGS_DEBUG="-O1 -g1" -DCHAINDRIVE_SANITIZE=ON -DPython3_EXECUTABLE="$VENV/bin/python" \
         -DCHAINDRIVE_TEST_CACHE_DIR="$CHAINDRIVE_BUILD/calibration-cache" >/dev/null
-  # (the test programs only; the build runs the sanitized test binary too: GoogleTest's test discovery)
   cmake --build "$SANITIZE_BUILD" -j "$(nproc)" --target test_programs
-  echo "== sanitizer stage: built in $((SECONDS - start)) s; C++ tests and FmiCallFuzz (ctest)"
-  local tests=$SECONDS
+}
+
+sanitizer_tests() {
+  sanitizer_options
+  local start=$SECONDS
+  echo "== sanitizer stage: C++ tests and FmiCallFuzz (ctest)"
   # the span calibrations the release build's ctest and pytest computed, for the fuzz as for the
   # tests (CHAINDRIVE_TEST_CACHE_DIR above): computing them is not repeated under the sanitizers
   export CHAINDRIVE_CACHE_DIR="$CHAINDRIVE_BUILD/calibration-cache"
   local skipped
   skipped="$(sanitizer_skip_list)"
   ctest --test-dir "$SANITIZE_BUILD" --output-on-failure -j 2 -E "^($skipped)\$"
-  echo "== sanitizer stage: ctest took $((SECONDS - tests)) s, the stage $((SECONDS - start)) s; the fuzz reported:"
+  echo "== sanitizer stage: ctest took $((SECONDS - start)) s; the fuzz reported:"
   sed -n '/^fmi_call_fuzz: [0-9]* sequences, seeds/,/^  failing sequences/p' "$SANITIZE_BUILD/Testing/Temporary/LastTest.log"
+}
+
+# the builds run in the background end with the command, also when a stage before them failed
+stop_background_jobs() {
+  local pid
+  for pid in $(jobs -p); do
+    kill_tree "$pid"
+  done
+}
+
+# (each process stopped before its children are listed: it starts none meanwhile)
+kill_tree() {
+  local child
+  kill -STOP "$1" 2>/dev/null || return 0
+  for child in $(pgrep -P "$1"); do
+    kill_tree "$child"
+  done
+  kill "$1" 2>/dev/null
+  kill -CONT "$1" 2>/dev/null || true
 }
 
 # Debian packages, the Python environment and the build, each when needed (nothing when the
@@ -203,18 +256,46 @@ case "${1:-}" in
     ;;
   test)
     shift
-    install_system_packages "${TEST_APT_PACKAGES[@]}"
-    setup_python test,package
+    trap stop_background_jobs EXIT
     stage=$SECONDS
+    install_system_packages
+    # the native build (always: ctest needs the build of the sources as they are; cheap when
+    # nothing changed) starts as soon as it can: the tests' Debian packages and pip's install of
+    # the rest (some minutes on a fresh machine, mostly downloads) run beside it
+    build_python_ready
+    configure_build
+    native_log="$CHAINDRIVE_BUILD/native-build.log"
+    echo "== the native build: beside the set-up (log: $native_log)"
+    # (at nice 5: on a fresh machine the longest chain is the cross builds', zig compiling its
+    # runtimes one file at a time, and it gets three quarters of a core beside the native build)
+    (renice -n 5 -p "$BASHPID" >/dev/null; compile_build) > "$native_log" 2>&1 &
+    native_pid=$!
+    if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
+      # the sanitizer stage's build beside everything, at the lowest priority (nice 19): it takes
+      # only the CPU the other stages leave idle (downloads, links, the cross builds' runtimes
+      # compiled one file at a time, pytest's waits) and finishes after pytest
+      mkdir -p "$SANITIZE_BUILD"
+      sanitize_log="$SANITIZE_BUILD/sanitizer-build.log"
+      echo "== the sanitizer stage's build: beside the rest at the lowest priority (log: $sanitize_log)"
+      (renice -n 19 -p "$BASHPID" >/dev/null; sanitizer_build) > "$sanitize_log" 2>&1 &
+      sanitize_pid=$!
+    fi
     # the FMUs' cross builds (linux64, win64) run beside the native build and the C++ tests: on a
     # fresh machine most of their time is zig compiling each platform's C runtime and libc++ one
     # source at a time, which leaves a core to the rest
-    mkdir -p "$CHAINDRIVE_BUILD"
     cross_log="$CHAINDRIVE_BUILD/package-binaries.log"
     echo "== the FMUs' linux64 and win64 binaries: building beside the rest (log: $cross_log)"
     "$VENV/bin/python" -m harness package --binaries-only > "$cross_log" 2>&1 &
     cross_pid=$!
-    build  # (always: ctest needs the build of the sources as they are; cheap when nothing changed)
+    install_system_packages "${TEST_APT_PACKAGES[@]}"
+    setup_python test,package
+    native_status=0
+    wait "$native_pid" || native_status=$?
+    cat "$native_log"
+    if [ "$native_status" != 0 ]; then
+      echo "the native build failed (exit status $native_status; log: $native_log)" >&2
+      exit 1
+    fi
     echo "== set-up and build: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== C++ tests"
     ctest --test-dir "$CHAINDRIVE_BUILD" --output-on-failure -j 2
@@ -236,7 +317,16 @@ case "${1:-}" in
       "$VENV/bin/python" -m pytest -q -n auto --dist loadfile --no-loadscope-reorder --durations=15 tests/python "$@"
     echo "== Python tests: $((SECONDS - stage)) s"
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
-      (sanitizer_stage)
+      stage=$SECONDS
+      sanitize_status=0
+      wait "$sanitize_pid" || sanitize_status=$?
+      cat "$sanitize_log"
+      if [ "$sanitize_status" != 0 ]; then
+        echo "the sanitizer build failed (exit status $sanitize_status; log: $sanitize_log)" >&2
+        exit 1
+      fi
+      echo "== sanitizer stage: its build finished $((SECONDS - stage)) s after pytest"
+      (sanitizer_tests)
     fi
     ;;
   *)

@@ -18,12 +18,13 @@ import shutil
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-from fmpy.validation import validate_fmu
-
 from .. import paths
 from ..fmu import export
-from . import archive, binaries, compare, inspect, sources
+from . import archive, binaries, inspect, sources
 from .toolchain import TARGETS
+
+# (fmpy's validator and compare.py, which need numpy, are imported where they are used:
+# ./run.sh test starts --binaries-only with fmpy and zig installed, before the rest of pip's)
 
 # id: (adapter folder fmu/<adapter>, model description, default description in resources/);
 # ChainDrive's model description and resources are generated from the default drive, as every
@@ -126,6 +127,7 @@ def report(fmu_id, fmu_file, built):
             found = inspect.problems_pe(r)
         found += inspect.link_input_problems(binary.parent, [fmu_id])
         problems += [f"{platform}: {p}" for p in found]
+    from fmpy.validation import validate_fmu
     problems += [f"fmpy validate: {p}" for p in validate_fmu(str(fmu_file))]
     for p in problems:
         print(f"   PROBLEM {p}")
@@ -143,6 +145,7 @@ def compare_platforms(dist, work):
     """Prints, per FMU and method, whether the win64 binary (under wine) and the source build give
     the linux64 binary's bits at every step; returns the number of runs that do not."""
     print("\n== the same bits on every platform (every output after every 0.1 ms step)")
+    from . import compare
     with compare.wine(work / "wine"):
         master = compare.build_master(work)
         unpacked = {fmu_id: compare.unpack(dist / f"{fmu_id}.fmu", work / fmu_id) for fmu_id in FMUS}
@@ -155,6 +158,7 @@ def compare_platforms(dist, work):
 
 def compare_runs(fmu_id, method, duration, unpacked, built, master, work):
     """One comparison's two lines; returns how many of them fail."""
+    from . import compare
     run = (lambda d: compare.run_cvt(d, duration)) if fmu_id == "CVTChain" else \
           (lambda d: compare.run_timing(d, duration, method))
     linux = run(unpacked)
@@ -166,6 +170,7 @@ def compare_runs(fmu_id, method, duration, unpacked, built, master, work):
 def show(label, run_other, linux):
     """Prints how the other run compares with linux64's; returns 1 if it differs or fails (a
     source build's refusal of a SUNDIALS method is what it must do, not a failure)."""
+    from . import compare
     try:
         c = compare.compare(linux, run_other())
     except Exception as e:
