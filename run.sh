@@ -99,7 +99,7 @@ build_python_ready() {
   "$VENV/bin/python" -c "import importlib.util as u; assert u.find_spec('fmpy') and u.find_spec('ziglang')" \
     2>/dev/null && return 0
   local pins
-  pins="$(grep -o '"\(fmpy\|ziglang\)==[^"]*"' pyproject.toml | tr -d '"' | tr '\n' ' ')"
+  pins="$(grep -o '"\(fmpy\|ziglang\)==[^"]*"' pyproject.toml | tr -d '"' | paste -sd ' ')"
   echo "== installing $pins into $VENV (what the builds need of Python)"
   # shellcheck disable=SC2086
   "$VENV/bin/python" -m pip install -q --disable-pip-version-check --no-deps $pins
@@ -148,30 +148,13 @@ compile_build() {
 }
 
 # The sanitizer stage: a second build with -DCHAINDRIVE_SANITIZE=ON (AddressSanitizer with the
-# leak checker, UndefinedBehaviorSanitizer), then its ctest: the C++ tests and FmiCallFuzz (random
-# FMI call sequences, tests/fuzz). Debug with -O1: Eigen's index and size assertions stay on (an
-# index past a row that stays inside the matrix's allocation is invisible to AddressSanitizer),
-# and -O1 keeps Eigen's inlining: the C++ tests take about 7 times the CPU time of the release
-# build. -g1: line tables, all a report's stack needs (a batch of the core 99 CPU s against 118 s
-# with -g). The tests of tests/cpp/sanitizer_skip.txt (the 15 longest of the release ctest, 287
-# of its 359 CPU s, and 9 of more than 30 s under the sanitizers) run in the release build only:
-# they run the same code for longer (simulated time, calibration grids), and under the
-# sanitizers they took most of the stage.
-# tests/cpp/sanitizer_skip.txt as ctest's regular expression of names; a name that is not
-# exactly one test of the sanitizer build (renamed, mistyped) stops the stage with its name
-sanitizer_skip_list() {
-  local name count names=()
-  for name in $(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' tests/cpp/sanitizer_skip.txt); do
-    count="$(ctest --test-dir "$SANITIZE_BUILD" -N -R "^$name\$" | sed -n 's/^Total Tests: //p')"
-    if [ "$count" != 1 ]; then
-      echo "tests/cpp/sanitizer_skip.txt: '$name' names ${count:-0} tests of $SANITIZE_BUILD; one is allowed" >&2
-      exit 1
-    fi
-    names+=("$name")
-  done
-  (IFS='|'; echo "${names[*]}")
-}
-
+# leak checker, UndefinedBehaviorSanitizer), then its ctest: the C++ tests of
+# tests/cpp/sanitizer_tests.txt (the code that reads a user's input and the code indexed by it)
+# and FmiCallFuzz (random FMI call sequences, tests/fuzz, in two halves). Debug with -O1: Eigen's
+# index and size assertions stay on (an index past a row that stays inside the matrix's
+# allocation is invisible to AddressSanitizer), and -O1 keeps Eigen's inlining: the C++ tests
+# take about 7 times the CPU time of the release build. -g1: line tables, all a report's stack
+# needs (a batch of the core 99 CPU s against 118 s with -g).
 # the sanitizers' options, for the build (GoogleTest's discovery runs the test program) and ctest:
 # every report ends the process with a non-zero status (with -fno-sanitize-recover=all from
 # CMake): the test fails and so does this command; leaks are reported at exit (and by the fuzz
@@ -198,11 +181,21 @@ sanitizer_tests() {
   # the span calibrations the release build's ctest and pytest computed, for the fuzz as for the
   # tests (CHAINDRIVE_TEST_CACHE_DIR above): computing them is not repeated under the sanitizers
   export CHAINDRIVE_CACHE_DIR="$CHAINDRIVE_BUILD/calibration-cache"
-  local skipped
-  skipped="$(sanitizer_skip_list)"
-  ctest --test-dir "$SANITIZE_BUILD" --output-on-failure -j 2 -E "^($skipped)\$"
+  ctest --test-dir "$SANITIZE_BUILD" --output-on-failure -j 2
   echo "== sanitizer stage: ctest took $((SECONDS - start)) s; the fuzz reported:"
   sed -n '/^fmi_call_fuzz: [0-9]* sequences, seeds/,/^  failing sequences/p' "$SANITIZE_BUILD/Testing/Temporary/LastTest.log"
+}
+
+# $1: a background job's pid, $2: its log, $3: what it is; prints the log once the job ended and
+# stops the command if it failed
+wait_for_background() {
+  local status=0
+  wait "$1" || status=$?
+  cat "$2"
+  if [ "$status" != 0 ]; then
+    echo "$3 failed (exit status $status; log: $2)" >&2
+    exit 1
+  fi
 }
 
 # the builds run in the background end with the command, also when a stage before them failed
@@ -220,7 +213,7 @@ kill_tree() {
   for child in $(pgrep -P "$1"); do
     kill_tree "$child"
   done
-  kill "$1" 2>/dev/null
+  kill "$1" 2>/dev/null || true
   kill -CONT "$1" 2>/dev/null || true
 }
 
@@ -272,8 +265,8 @@ case "${1:-}" in
     native_pid=$!
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
       # the sanitizer stage's build beside everything, at the lowest priority (nice 19): it takes
-      # only the CPU the other stages leave idle (downloads, links, the cross builds' runtimes
-      # compiled one file at a time, pytest's waits) and finishes after pytest
+      # only the CPU the other stages leave idle (downloads, links, the ends of the builds; pytest
+      # leaves it almost nothing) and finishes after pytest
       mkdir -p "$SANITIZE_BUILD"
       sanitize_log="$SANITIZE_BUILD/sanitizer-build.log"
       echo "== the sanitizer stage's build: beside the rest at the lowest priority (log: $sanitize_log)"
@@ -289,22 +282,13 @@ case "${1:-}" in
     cross_pid=$!
     install_system_packages "${TEST_APT_PACKAGES[@]}"
     setup_python test,package
-    native_status=0
-    wait "$native_pid" || native_status=$?
-    cat "$native_log"
-    if [ "$native_status" != 0 ]; then
-      echo "the native build failed (exit status $native_status; log: $native_log)" >&2
-      exit 1
-    fi
+    wait_for_background "$native_pid" "$native_log" "the native build"
     echo "== set-up and build: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== C++ tests"
     ctest --test-dir "$CHAINDRIVE_BUILD" --output-on-failure -j 2
     echo "== C++ tests: $((SECONDS - stage)) s"; stage=$SECONDS
     echo "== the FMUs for download (dist/)"
-    cross_status=0
-    wait "$cross_pid" || cross_status=$?
-    cat "$cross_log"
-    [ "$cross_status" = 0 ] || { echo "the FMUs' cross builds failed (exit status $cross_status)" >&2; exit 1; }
+    wait_for_background "$cross_pid" "$cross_log" "the FMUs' cross builds"
     echo "== the cross builds finished $((SECONDS - stage)) s after the C++ tests"
     "$VENV/bin/python" -m harness package
     echo "== packaging: $((SECONDS - stage)) s"; stage=$SECONDS
@@ -318,13 +302,7 @@ case "${1:-}" in
     echo "== Python tests: $((SECONDS - stage)) s"
     if [ "${CHAINDRIVE_SANITIZE_STAGE:-1}" != 0 ]; then
       stage=$SECONDS
-      sanitize_status=0
-      wait "$sanitize_pid" || sanitize_status=$?
-      cat "$sanitize_log"
-      if [ "$sanitize_status" != 0 ]; then
-        echo "the sanitizer build failed (exit status $sanitize_status; log: $sanitize_log)" >&2
-        exit 1
-      fi
+      wait_for_background "$sanitize_pid" "$sanitize_log" "the sanitizer build"
       echo "== sanitizer stage: its build finished $((SECONDS - stage)) s after pytest"
       (sanitizer_tests)
     fi

@@ -4,7 +4,7 @@
 // every allocation and report with full stacks, without preloading their runtimes into a host.
 //
 //   fmi_call_fuzz [--seed S] [--count N] [--batch B] [--timeout SECONDS] [--max-failures F]
-//                 [--in-process] [--trace] [--source-dir DIR]
+//                 [--in-process] [--trace] [--source-dir DIR] [--work-dir DIR]
 //
 // Sequence k runs with seed S + k; a failing sequence is printed with its seed and replays alone
 // with --seed <its seed> --count 1. Exit status 0 when every sequence passed.
@@ -34,7 +34,7 @@ constexpr std::uint64_t kDefaultCount = 3000;
 void usage() {
   std::fprintf(stderr,
                "usage: fmi_call_fuzz [--seed S] [--count N] [--batch B] [--timeout SECONDS] [--max-failures F]\n"
-               "                     [--in-process] [--trace] [--source-dir DIR]\n"
+               "                     [--in-process] [--trace] [--source-dir DIR] [--work-dir DIR]\n"
                "  --seed S          sequence k runs with seed S + k (default 1)\n"
                "  --count N         number of sequences (default %" PRIu64 ")\n"
                "  --batch B         sequences per child process (default 100)\n"
@@ -42,11 +42,13 @@ void usage() {
                "  --max-failures F  stop after F failing sequences (default 10)\n"
                "  --in-process      run in this process (for a debugger; a crash ends the run)\n"
                "  --trace           print every FMI call with its status and the FMU's message\n"
-               "  --source-dir DIR  the source tree (drive files; default %s)\n",
-               kDefaultCount, CHAINDRIVE_SOURCE_DIR);
+               "  --source-dir DIR  the source tree (drive files; default %s)\n"
+               "  --work-dir DIR    where the FMUs' resources are written (default %s; one per\n"
+               "                    program running at the same time)\n",
+               kDefaultCount, CHAINDRIVE_SOURCE_DIR, CHAINDRIVE_FUZZ_WORK_DIR);
 }
 
-bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir) {
+bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir, std::string& workDir) {
   o.count = kDefaultCount;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -59,6 +61,7 @@ bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir)
     else if (arg == "--timeout" && hasValue) o.timeoutSeconds = std::strtod(argv[++i], nullptr);
     else if (arg == "--max-failures" && hasValue) o.maxFailures = std::strtoull(argv[++i], nullptr, 10);
     else if (arg == "--source-dir" && hasValue) sourceDir = argv[++i];
+    else if (arg == "--work-dir" && hasValue) workDir = argv[++i];
     else return false;
   }
   return o.timeoutSeconds > 0.0;
@@ -111,7 +114,8 @@ void printSummary(const FuzzOptions& o, const FuzzTotals& t, double seconds, std
 int main(int argc, char** argv) {
   FuzzOptions options;
   std::string sourceDir = CHAINDRIVE_SOURCE_DIR;
-  if (!parseOptions(argc, argv, options, sourceDir)) {
+  std::string workDir = CHAINDRIVE_FUZZ_WORK_DIR;
+  if (!parseOptions(argc, argv, options, sourceDir, workDir)) {
     usage();
     return 2;
   }
@@ -123,7 +127,7 @@ int main(int argc, char** argv) {
     std::printf("fmi_call_fuzz: the default drive's interface changed: %s (tests/fuzz/fuzz_interface.h)\n", wrong.c_str());
     return 1;
   }
-  const std::vector<FuzzFailure> failures = runSequences(options, pathsIn(sourceDir, CHAINDRIVE_FUZZ_WORK_DIR), totals);
+  const std::vector<FuzzFailure> failures = runSequences(options, pathsIn(sourceDir, workDir), totals);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printSummary(options, totals, seconds, failures.size());
   for (const FuzzFailure& f : failures)
