@@ -70,7 +70,10 @@ class Slave:
         self.step_cpus = []  # [s] CPU time inside each fmi2DoStep: the FMU's own cost, without the master's
 
     def _log(self, component, instance, status, category, message):
-        self.messages.append((status, category.decode(), message.decode(errors="replace")))
+        # the message is a printf format (FMI 2.0 2.1.5); the FMU passes no arguments and doubles
+        # every '%' of its text, which formatting undoes
+        text = message.decode(errors="replace").replace("%%", "%")
+        self.messages.append((status, category.decode(), text))
 
     @contextlib.contextmanager
     def refusals(self, function):

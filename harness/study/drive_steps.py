@@ -2,7 +2,7 @@
 step, closed loop with its own tables, the evidence behind the per-drive steps (docs/defaults.md).
 
     python -m harness drive-steps [--drives FILE ...] [--rpm 1000 6000] [--cycles 120] [--replicas 2]
-                                  [--out docs/study/drive_steps]
+                                  [--workers N] [--out docs/study/drive_steps]
 
 Per drive and speed, the main job (closed loop, the drive's own tables from tests/drives/tables/<drive>/
 or the shipped ones for the default drive, run-in until the tensioner has settled, --cycles counted
@@ -12,11 +12,15 @@ at half that step. Checked: no blow-up, every run's energy balance within the ma
 (harness/checks.py), and per cycle statistic the difference of the two ensembles' means against
 their combined 95 % interval (z); the statistics agree jointly at 95 % when every |z| lies within
 the Bonferroni limit for their number (harness/study/errors.py). Written: OUT/drive_steps.json
-(every ensemble's summary, energy balances, CPU) and OUT/drive_steps.md.
+(every ensemble's summary, energy balances, CPU) and OUT/drive_steps.md. The points (drive x
+speed) run side by side in --workers processes (default: one per core), each point's runs in turn.
 """
+import argparse
+import concurrent.futures
 import dataclasses
 import json
 import math
+import os
 import pathlib
 import time
 
@@ -34,6 +38,7 @@ def add_arguments(ap):
     ap.add_argument("--rpm", type=float, nargs="+", default=[1000.0, 6000.0], help="engine speeds [rpm]")
     ap.add_argument("--cycles", type=int, default=job.DEFAULT_CYCLES, help="engine cycles counted after the run-in")
     ap.add_argument("--replicas", type=int, default=2, help="runs per ensemble")
+    ap.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="points run side by side")
     ap.add_argument("--out", default=str(paths.ROOT / "docs" / "study" / "drive_steps"))
 
 
@@ -42,6 +47,8 @@ def check(ap, args):
         ap.error(f"--cycles {args.cycles}: at least 2 counted cycles are needed for a confidence interval")
     if args.replicas < 1:
         ap.error(f"--replicas {args.replicas}: at least 1")
+    if args.workers < 1:
+        ap.error(f"--workers {args.workers}: at least 1")
     return args
 
 
@@ -121,11 +128,14 @@ def table(points):
 def run(args):
     out = pathlib.Path(args.out)
     started = time.time()
-    points = []
-    for drive in args.drives:
-        for rpm in args.rpm:
-            points.append(study_point(args, drive, rpm))
-            print(f"\n{drive} at {rpm:g} rpm: {verdict(points[-1])}")
+    cases = [(drive, rpm) for drive in args.drives for rpm in args.rpm]
+    with concurrent.futures.ProcessPoolExecutor(min(args.workers, len(cases))) as pool:
+        # (what a point reads of the arguments: the namespace itself holds modules, which do not pickle)
+        settings = argparse.Namespace(cycles=args.cycles, replicas=args.replicas, out=args.out)
+        futures = [pool.submit(study_point, settings, drive, rpm) for drive, rpm in cases]
+        points = [f.result() for f in futures]  # (in the order of the cases)
+    for (drive, rpm), point in zip(cases, points):
+        print(f"\n{drive} at {rpm:g} rpm: {verdict(point)}")
     lines = ["# A step that fits the drive, measured", "",
              f"Machine: {runs.machine()}; command: python -m harness drive-steps {' '.join(args.argv)}; "
              f"{(time.time() - started) / 60:.0f} minutes.", "",

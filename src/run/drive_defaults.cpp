@@ -51,6 +51,7 @@ struct DefaultEstimates {
   double realtimeModes = 0.0, plainModes = 0.0;  // [s] linkModeStep, joints' damping implicit, explicit
   double realtimeJointDampingRatio = 0.0;        // linkModeStep's, joints' damping implicit
   double span = 0.0;                             // [s] spanModeStep
+  std::string canonicalText;                     // the default drive's description
 };
 const DefaultEstimates& defaultEstimates() {
   static const DefaultEstimates e = [] {
@@ -61,6 +62,7 @@ const DefaultEstimates& defaultEstimates() {
     d.realtimeJointDampingRatio = realtime.jointDampingRatio;
     d.plainModes = linkModeStep(m, true).step;
     d.span = span::spanModeStep(span::assembleSpanModel(m, false)).step;
+    d.canonicalText = m.description.canonicalText;
     return d;
   }();
   return e;
@@ -101,9 +103,28 @@ void spanEstimate(const Model& m, DriveRow& r) {
   r.limitedBy = "span " + modes.stiffestSpan + ", " + format("%.3g", modes.spanStiffness) + " N/m";
 }
 
+// The link row's step checked on the drive's own dynamics (step_probe.h): not the default drive's
+// (its steps are its measured closed-loop ones, whatever its tensioner's parameters), not a drive
+// with rigid contacts (the probe runs compliant ones). Returns the reason's clause.
+std::string probeLinkRow(const Model& m, DriveRow& r) {
+  if (m.description.canonicalText == defaultEstimates().canonicalText) return "";
+  if (m.description.contact.method != ContactMethod::Compliant)
+    return "; not checked on the drive's dynamics (its contacts are rigid; the probe runs compliant ones)";
+  try {
+    r.probe = probeStep(m, r.row.method, r.divisions);
+  } catch (const std::exception& e) {  // (a drive the link model cannot start: its run says why)
+    return std::string("; not checked on the drive's dynamics (") + e.what() + ")";
+  }
+  r.divisions = r.probe->divisions;
+  return "; checked on the drive's dynamics (" + format("%g", kProbeDuration) + " s open loop at " +
+         format("%g", kProbeSpeedRpm) + " rpm, " + format("%g", kProbeLoad) + " N m per loaded sprocket: |energy balance| " +
+         "within " + format("%g", 100.0 * kProbeBalanceLimit) + " %): " + describeProbe(*r.probe) +
+         (r.probe->passed ? "" : ", no step of the ladder passed");
+}
+
 }  // namespace
 
-DriveRow driveRow(const Model& m, const SolverDefaults& tableRow) {
+DriveRow driveRow(const Model& m, const SolverDefaults& tableRow, bool checkOnDynamics) {
   DriveRow r;
   r.row = tableRow;
   if (tableRow.scene != Scene::TimingDrive) {
@@ -119,10 +140,13 @@ DriveRow driveRow(const Model& m, const SolverDefaults& tableRow) {
   r.divisions = std::isfinite(r.estimate) ? divisionsWithin(kStepInterval, r.margin * r.estimate) : 1;
   const bool capped = span && r.divisions < tableDivisions;
   if (capped) r.divisions = tableDivisions;
+  r.estimateDivisions = r.divisions;
+  const std::string probed = span || !checkOnDynamics ? "" : probeLinkRow(m, r);
   r.row.step = kStepInterval / static_cast<double>(r.divisions);
   r.reason = "step " + format("%.4g", r.row.step) + " s = " + division(r.divisions) + ": " + what +
              " stability estimate " + format("%.4g", r.estimate * 1e6) + " us (stiffest: " + r.limitedBy + ") x " +
-             format("%.3g", r.margin) + ", the default drive's margin";
+             format("%.3g", r.margin) + ", the default drive's margin" +
+             (r.divisions != r.estimateDivisions ? ", " + division(r.estimateDivisions) : "") + probed;
   if (capped) r.reason += "; not above " + division(tableDivisions) + ", the step its accuracy was checked at";
   return r;
 }

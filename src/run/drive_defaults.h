@@ -9,6 +9,9 @@
 // - the margin is the default drive's: its row's step over its own estimate, so that the default
 //   drive keeps the table's steps bit for bit (1e-4 / 28, 2.5e-6 = 1e-4 / 40, 1e-4 / 3) and every
 //   result made with them.
+// A link row of a drive other than the default (whose steps are its measured closed-loop ones)
+// is then checked on the drive's own dynamics (step_probe.h), which the estimate does not see: the
+// step is the probe's first step from the estimate's down that passes.
 // The span row never exceeds the table's 1e-4 / 3, the step its accuracy was checked at (it lies far
 // inside its stable step). The CVT's row is the CVT's.
 #pragma once
@@ -18,6 +21,7 @@
 
 #include "assembly/model.h"
 #include "run/defaults.h"
+#include "run/step_probe.h"
 
 namespace chaindrive {
 
@@ -26,15 +30,19 @@ namespace chaindrive {
 struct DriveRow {
   SolverDefaults row;       // the table's row with the drive's step
   long long divisions = 0;  // row.step = kStepInterval / divisions (0: a row no drive changes)
+  long long estimateDivisions = 0;  // the division within margin x estimate (before the probe)
+  std::optional<ProbedStep> probe;  // a link row of a drive other than the default: its step checked
+                                    // on the drive's own dynamics (step_probe.h)
   double estimate = 0.0;    // [s] the drive's estimated stable step for the row's method (0: none)
   double margin = 0.0;      // the default drive's row step over its estimate
   std::string limitedBy;    // what sets the estimate, in words
   std::string reason;       // one line: "step 3.571e-06 s = 1e-4/28: the drive's stability estimate ..."
 };
 
-/// The drive's row for a row of the table. Throws DescriptionError for the span row of a drive
-/// without a span model (span_model.h).
-DriveRow driveRow(const Model& m, const SolverDefaults& tableRow);
+/// The drive's row for a row of the table; `checkOnDynamics` false: the estimate's step alone,
+/// without the probe (what the estimate's own tests look at). Throws DescriptionError for the span
+/// row of a drive without a span model (span_model.h).
+DriveRow driveRow(const Model& m, const SolverDefaults& tableRow, bool checkOnDynamics = true);
 
 /// The step of a run and why: `given` as given, else the step of the drive's row for `method`
 /// (defaultStepRow on the run's own table row `own`).

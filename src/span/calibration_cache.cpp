@@ -98,23 +98,23 @@ std::string readCalibration(const std::string& file, const std::string& key, std
   }
 }
 
+}  // namespace
+
 // Written beside and renamed into place: an instance reading meanwhile sees the old file or the new.
-bool writeCalibration(const std::string& dir, const std::string& file, const json& j) {
+bool writeCacheFile(const std::string& dir, const std::string& file, const std::string& text) {
   std::error_code error;
   std::filesystem::create_directories(utf8Path(dir), error);
-  const std::string tmp = file + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(&j));
+  const std::string tmp = file + ".tmp" + std::to_string(reinterpret_cast<std::uintptr_t>(&text));
   {
     std::ofstream out(utf8Path(tmp), std::ios::binary);
     if (!out) return false;
-    out << j.dump(1) << "\n";
+    out << text;
     if (!out) return false;
   }
   std::filesystem::rename(utf8Path(tmp), utf8Path(file), error);  // replaces the file atomically
   if (error) std::filesystem::remove(utf8Path(tmp), error);
   return !error;
 }
-
-}  // namespace
 
 std::string calibrationKey(const Model& m) {
   const TensionerDesc& t = m.description.tensioner;
@@ -173,7 +173,7 @@ CalibrationOrigin calibrate(SpanModel& sm, const std::string& file, SpanCalibrat
   }
   applyCalibration(sm, c);
   for (const std::string& line : describeCalibration(sm, c)) sm.notes.push_back("calibration: " + line);
-  const bool written = !cached && !cacheFile.empty() && writeCalibration(dir, cacheFile, toJson(c, key));
+  const bool written = !cached && !cacheFile.empty() && writeCacheFile(dir, cacheFile, toJson(c, key).dump(1) + "\n");
   sm.notes.push_back("calibration: key " + key + (cached ? ", from the cache " + cacheFile
                                                   : written ? ", written to the cache " + cacheFile
                                                             : ", not cached (" + (dir.empty() ? std::string("no cache folder")
@@ -202,7 +202,7 @@ CalibrationOrigin writeCalibrationFile(SpanModel& sm, const std::string& file) {
     throw std::runtime_error("the span model of this drive cannot be calibrated: " + sm.notes.back());
   const std::size_t slash = file.find_last_of("/\\");
   const std::string dir = slash == std::string::npos ? "." : file.substr(0, std::max<std::size_t>(slash, 1));
-  if (!writeCalibration(dir, file, toJson(c, calibrationKey(*sm.links))))
+  if (!writeCacheFile(dir, file, toJson(c, calibrationKey(*sm.links)).dump(1) + "\n"))
     throw std::runtime_error("cannot write " + file);
   sm.notes.push_back("calibration: written to " + file);
   return origin;

@@ -23,6 +23,11 @@ std::string calibrationKey(const Model& m);
 /// The cache folder ("" when there is none).
 std::string calibrationCacheDir();
 
+/// Writes `text` into `file` in the cache folder `dir` (made if missing): beside it first, then
+/// renamed into place, so that an instance reading meanwhile sees the old file or the new. False
+/// when it cannot be written (no cache: the caller computes again next time).
+bool writeCacheFile(const std::string& dir, const std::string& file, const std::string& text);
+
 /// Where a calibration came from.
 enum class CalibrationOrigin { File, Cache, Identified, None };
 

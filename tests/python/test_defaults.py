@@ -157,7 +157,7 @@ def clearance_drive(tmp_path_factory):
 def test_a_drive_with_joint_clearance_takes_its_own_row(table, clearance_drive):
     """The link fidelity's real-time method needs joints without clearance: a drive whose joints
     have clearance runs the table's row for it in the FMU, chaindrive-run and the harness's job."""
-    row = table["timing"]["link"]["clearanceOrRigid"]
+    row = drive_table(clearance_drive)["timing"]["link"]["clearanceOrRigid"]  # (its own step: not the default drive)
     assert row["method"] != table["timing"]["link"]["method"]
     slave = fmu.Slave("defaults-clearance", parameters={"driveFile": str(clearance_drive)})
     slave.initialize(inputs={"crankshaft.w": fmu.rpm_to_rad_s(3000.0)})

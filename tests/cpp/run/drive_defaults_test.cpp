@@ -7,6 +7,7 @@
 #include "integrators/stable_step.h"
 #include "dynamics/link_modes.h"
 #include "run/drive_defaults.h"
+#include "run/step_probe.h"
 #include "test_util.h"
 
 using namespace chaindrive;
@@ -38,6 +39,7 @@ TEST(DriveDefaults, TheDefaultDriveKeepsTheTablesSteps) {
   EXPECT_EQ(span.row.step, 1e-4 / 3);
   EXPECT_EQ(span.divisions, 3);
   for (const DriveRow* r : {&link, &plain, &span}) {
+    EXPECT_FALSE(r->probe.has_value());  // (its steps are its measured closed-loop ones)
     EXPECT_EQ(r->row.method, (r == &link ? linkRow() : r == &plain ? plainRow() : spanRow()).method);
     EXPECT_NEAR(r->margin * r->estimate, r->row.step, 1e-12 * r->row.step);
   }
@@ -65,10 +67,11 @@ TEST(DriveDefaults, ALighterLinkOrAStifferContactGivesAShorterStep) {
            [](nlohmann::json& j) { j["contact"]["rollerSprocket"]["stiffness"] = 4e8; }}) {
     const Model m = assemble(modifiedDefault(edit));
     for (const SolverDefaults* table : {&linkRow(), &plainRow()}) {
-      const DriveRow r = driveRow(m, *table), d = driveRow(def, *table);
+      const DriveRow r = driveRow(m, *table, false), d = driveRow(def, *table);
       EXPECT_LT(r.estimate, d.estimate);
       EXPECT_LT(r.row.step, d.row.step);
       EXPECT_EQ(r.row.step, 1e-4 / static_cast<double>(r.divisions));
+      EXPECT_EQ(r.divisions, r.estimateDivisions);
       EXPECT_LE(r.row.step, r.margin * r.estimate);
       EXPECT_GT(1e-4 / static_cast<double>(r.divisions - 1), r.margin * r.estimate);
       EXPECT_EQ(r.margin, d.margin);
@@ -89,33 +92,73 @@ TEST(DriveDefaults, StifferJointsAtTheSameDampingLoseTheImplicitDampingsGain) {
     j["chain"]["joint"]["damping"] = 250.0 * std::sqrt(2.0);
   }));
   const double modes = linkModeStep(stiff, false).step / linkModeStep(def, false).step;
-  const DriveRow d = driveRow(def, linkRow()), s = driveRow(stiff, linkRow()), c = driveRow(damped, linkRow());
+  const DriveRow d = driveRow(def, linkRow()), s = driveRow(stiff, linkRow(), false), c = driveRow(damped, linkRow(), false);
   EXPECT_NEAR(s.estimate / d.estimate, modes * std::pow(std::sqrt(0.5), 0.75), 1e-12);
   EXPECT_NEAR(s.estimate / d.estimate, 0.65, 0.01);
   EXPECT_TRUE(contains(s.reason, "the joints' damping ratio")) << s.reason;
   EXPECT_NEAR(c.estimate / d.estimate, modes, 1e-12);
   EXPECT_FALSE(contains(c.reason, "the joints' damping ratio")) << c.reason;
   const double plainModes = linkModeStep(stiff, true).step / linkModeStep(def, true).step;
-  EXPECT_NEAR(driveRow(stiff, plainRow()).estimate / driveRow(def, plainRow()).estimate, plainModes, 1e-12);
+  EXPECT_NEAR(driveRow(stiff, plainRow(), false).estimate / driveRow(def, plainRow()).estimate, plainModes, 1e-12);
 }
 
-// The test drives (tests/drives/README.md): the 06B drives keep the default's link steps (their
-// chain and contacts are the default's); the 8 mm chain's lighter links get a shorter step, inside
-// its measured open-loop limit 3.125 us (ran; 3.226 us blew up) with a margin no smaller than the
-// default's to its own (0.66); every span model keeps 1e-4/3 or shorter.
-TEST(DriveDefaults, TheTestDrivesSteps) {
+// The test drives (tests/drives/README.md): the 06B drives have the default's estimate and the
+// 8 mm chain's lighter links a shorter one, inside its measured open-loop limit 3.125 us (ran;
+// 3.226 us blew up) with a margin no smaller than the default's to its own (0.66); every span
+// model keeps 1e-4/3 or shorter.
+TEST(DriveDefaults, TheTestDrivesEstimates) {
   for (const char* name : {"sohc_single_cam", "diesel_pump", "idler"}) {
     const Model m = testDrive(name);
-    EXPECT_EQ(driveRow(m, linkRow()).row.step, 1e-4 / 28) << name;
-    EXPECT_EQ(driveRow(m, plainRow()).row.step, 2.5e-6) << name;
+    EXPECT_EQ(driveRow(m, linkRow(), false).row.step, 1e-4 / 28) << name;
+    EXPECT_EQ(driveRow(m, plainRow(), false).row.step, 2.5e-6) << name;
     EXPECT_LE(driveRow(m, spanRow()).row.step, 1e-4 / 3) << name;
   }
   const Model m = testDrive("dohc_8mm");
-  const DriveRow link = driveRow(m, linkRow());
+  const DriveRow link = driveRow(m, linkRow(), false);
   EXPECT_LT(link.row.step, 0.66 * 3.125e-6);
   EXPECT_GT(link.row.step, 1.5e-6);
   EXPECT_TRUE(contains(link.reason, "on a 1.44 g link")) << link.reason;
-  EXPECT_LT(driveRow(m, plainRow()).row.step, 2.5e-6);
+  EXPECT_LT(driveRow(m, plainRow(), false).row.step, 2.5e-6);
+}
+
+// The probe's limit is the default drive's own energy balance at its steps: its probe passes at
+// 1e-4/28 (real-time method) and 1e-4/40 (plain Verlet), the real-time method's within a third of
+// the limit (the limit is that balance, rounded up), and fails a step a quarter longer.
+TEST(DriveDefaults, TheProbesLimitIsTheDefaultDrivesBalance) {
+  const Model& m = *defaultModel();
+  const ProbeRun own = probeRun(m, linkRow().method, 28);
+  EXPECT_TRUE(own.passes()) << own.energyBalance << " " << own.failure;
+  EXPECT_GT(std::fabs(own.energyBalance), 2.0 / 3.0 * kProbeBalanceLimit);
+  EXPECT_TRUE(probeRun(m, plainRow().method, 40).passes());
+  EXPECT_FALSE(probeRun(m, linkRow().method, 22).passes());
+}
+
+// Each test drive's link steps checked on its dynamics: the probe's ladder starts at the estimate's
+// division and stops at the first rung that passes, every rung before it failing; the pump and
+// idler drives, whose dynamic roller forces the estimate does not see, get a shorter real-time
+// step than the default's 1e-4/28, the idler's the shortest (measured closed loop at 6000 rpm:
+// docs/study/drive_steps/), and the reason says so.
+TEST(DriveDefaults, TheTestDrivesStepsCheckedOnTheirDynamics) {
+  long long realtime[4] = {};
+  int k = 0;
+  for (const char* name : {"dohc_8mm", "sohc_single_cam", "diesel_pump", "idler"}) {
+    const Model m = testDrive(name);
+    for (const SolverDefaults* table : {&linkRow(), &plainRow()}) {
+      const DriveRow r = driveRow(m, *table);
+      ASSERT_TRUE(r.probe.has_value()) << name;
+      const ProbedStep& p = *r.probe;
+      EXPECT_TRUE(p.passed) << name << ": " << r.reason;
+      EXPECT_EQ(p.runs.front().divisions, r.estimateDivisions) << name;
+      EXPECT_EQ(p.runs.back().divisions, r.divisions) << name;
+      EXPECT_EQ(r.row.step, 1e-4 / static_cast<double>(r.divisions)) << name;
+      for (std::size_t i = 0; i + 1 < p.runs.size(); ++i) EXPECT_FALSE(p.runs[i].passes()) << name;
+      EXPECT_TRUE(contains(r.reason, "checked on the drive's dynamics")) << r.reason;
+      if (table == &linkRow()) realtime[k] = r.divisions;
+    }
+    ++k;
+  }
+  EXPECT_GT(realtime[2], 28);
+  EXPECT_GT(realtime[3], realtime[2]);
 }
 
 // A step given is the step; a method named without one takes its row's, the drive's (plain
