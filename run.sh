@@ -150,7 +150,8 @@ compile_build() {
 # The sanitizer stage: a second build with -DCHAINDRIVE_SANITIZE=ON (AddressSanitizer with the
 # leak checker, UndefinedBehaviorSanitizer), then its ctest: the C++ tests of
 # tests/cpp/sanitizer_tests.txt (the code that reads a user's input and the code indexed by it)
-# and FmiCallFuzz (random FMI call sequences, tests/fuzz, in two halves). Debug with -O1: Eigen's
+# and FmiCallFuzz (random FMI call sequences, tests/fuzz, in two halves) and DriveFuzz (random drive
+# descriptions through the export and the FMU's initialization). Debug with -O1: Eigen's
 # index and size assertions stay on (an index past a row that stays inside the matrix's
 # allocation is invisible to AddressSanitizer), and -O1 keeps Eigen's inlining: the C++ tests
 # take about 7 times the CPU time of the release build. -g1: line tables, all a report's stack
@@ -183,7 +184,8 @@ sanitizer_tests() {
   export CHAINDRIVE_CACHE_DIR="$CHAINDRIVE_BUILD/calibration-cache"
   ctest --test-dir "$SANITIZE_BUILD" --output-on-failure -j 2
   echo "== sanitizer stage: ctest took $((SECONDS - start)) s; the fuzz reported:"
-  sed -n '/^fmi_call_fuzz: [0-9]* sequences, seeds/,/^  failing sequences/p' "$SANITIZE_BUILD/Testing/Temporary/LastTest.log"
+  sed -n '/^fmi_call_fuzz: [0-9]* sequences, seeds/,/^  failing sequences/p' "$SANITIZE_BUILD/Testing/Temporary/LastTest.log" |
+    grep -v ' 0 sequences, '  # (the plans a run did not take)
 }
 
 # $1: a background job's pid, $2: its log, $3: what it is; prints the log once the job ended and

@@ -411,13 +411,39 @@ void readJoint(Fields jt, JointDesc& joint) {
 Fields::json parseJson(std::string_view text) {
   try {
     return json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    throw DescriptionError({std::string("(file): not valid JSON: ") + e.what()});
+  } catch (const json::exception& e) {  // (a syntax error, or a number beyond a double: 1e999)
+    const std::string what = e.what();
+    const std::size_t tag = what.rfind("] ", what.find(' ') + 1);  // "[json.exception.parse_error.101] "
+    throw DescriptionError({"(file): not valid JSON: " + (tag == std::string::npos ? what : what.substr(tag + 2))});
   }
 }
 
+namespace {
+
+// A problem as one line: the control characters of a name quoted in it (a line break typed into
+// a name) written as escapes.
+std::string printable(std::string problem) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (const char c : problem) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (u < 0x20 || u == 0x7f) out += std::string("\\x") + kHex[u >> 4] + kHex[u & 15];
+    else out += c;
+  }
+  return out;
+}
+
+std::vector<std::string> printable(std::vector<std::string> problems) {
+  for (std::string& p : problems) p = printable(std::move(p));
+  return problems;
+}
+
+}  // namespace
+
 DescriptionError::DescriptionError(std::vector<std::string> problems)
-    : std::runtime_error(joinLines(problems)), problems_(std::move(problems)) {}
+    : std::runtime_error(joinLines(printable(problems))), problems_(printable(std::move(problems))) {}
 
 int DriveDescription::sprocketIndex(std::string_view n) const {
   for (std::size_t i = 0; i < sprockets.size(); ++i)

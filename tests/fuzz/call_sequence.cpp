@@ -13,7 +13,7 @@
 namespace chaindrive::fuzz {
 
 const char* planName(std::uint32_t plan) {
-  constexpr const char* kNames[kPlanCount] = {"poisoned", "cheap-init", "full-init", "other-method", "span"};
+  constexpr const char* kNames[kPlanCount] = {"poisoned", "cheap-init", "full-init", "other-method", "span", "drive"};
   return plan < kPlanCount ? kNames[plan] : "unknown";
 }
 
@@ -83,6 +83,11 @@ std::string statusText(fmi2Status s) {
 // ---- the frame of a sequence ----
 
 SequenceStats CallSequence::run() {
+  if (paths_.drivePlanOnly) {
+    stats_.plan = static_cast<std::uint32_t>(Plan::Drive);
+    runDrive();
+    return stats_;
+  }
   choosePlan();
   checkVersionStrings();
   if (!instantiate()) {
@@ -358,8 +363,9 @@ void CallSequence::checkStatus(const char* function, fmi2Status status) {
 
 void CallSequence::violation(const std::string& what) {
   ++stats_.violations;
-  std::printf("fmi_call_fuzz: seed %" PRIu64 " (%s): %s (last FMU message: \"%.300s\")\n", seed_, planName(stats_.plan),
-              what.c_str(), log_.lastMessage.c_str());
+  std::printf("fmi_call_fuzz: seed %" PRIu64 " (%s): %s (last FMU message: \"%.300s\")%s%s\n", seed_,
+              planName(stats_.plan), what.c_str(), log_.lastMessage.c_str(), driveMutation_.empty() ? "" : "; the drive: ",
+              driveMutation_.c_str());
   std::fflush(stdout);
 }
 

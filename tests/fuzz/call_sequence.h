@@ -26,8 +26,11 @@ enum class Plan : std::uint32_t {
   FullInit,     // the default start with the kinetostatic preload (about 1 s under the sanitizers)
   OtherMethod,  // another integrator, contact method or joint model; communication steps of 10 us
   Span,         // the span fidelity with any integrator; communication steps of 10..100 us
+  Drive,        // a random drive description (drive_mutations.h) through the export's files and the
+                // FMU's instantiation and initialization, a step or two at a given solver step; only
+                // where FuzzPaths::drivePlanOnly asks for it (fmi_call_fuzz --drives)
 };
-constexpr std::uint32_t kPlanCount = 5;
+constexpr std::uint32_t kPlanCount = 6;
 const char* planName(std::uint32_t plan);
 
 /// What one sequence did. Trivially copyable: it travels through a pipe.
@@ -39,6 +42,7 @@ struct SequenceStats {
   std::uint32_t completedSteps = 0;    // fmi2DoStep returned fmi2OK
   std::uint32_t statusCounts[4] = {};  // returned fmi2OK, fmi2Warning, fmi2Discard, fmi2Error
   std::uint32_t violations = 0;        // failed invariants (each printed with the seed)
+  std::uint32_t driveExported = 0;     // Plan::Drive: the export wrote the FMU's files for the drive
 };
 
 /// Runs the call sequence of `seed`; the same seed makes the same calls. trace: print every call

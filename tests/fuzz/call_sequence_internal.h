@@ -63,6 +63,11 @@ class CallSequence {
   bool instantiate();
   void runWithoutInstance();
   void finish();
+  // Plan::Drive (call_sequence_drives.cpp)
+  void runDrive();
+  bool exportDrive(std::string& guid);
+  bool instantiateDrive(const std::string& guid);
+  void checkOneLine(const std::string& where, const std::string& message);
   // the choice of the next call
   void nominalCall();
   void nominalStep();
@@ -138,6 +143,7 @@ class CallSequence {
   double shortestStep_ = 1e-5, longestStep_ = 1e-4;
   std::vector<SavedState> states_;
   std::vector<Blob> blobs_;
+  std::string driveMutation_;  // Plan::Drive: what was changed, for the reports
 };
 
 }  // namespace chaindrive::fuzz::detail

@@ -4,7 +4,10 @@
 // every allocation and report with full stacks, without preloading their runtimes into a host.
 //
 //   fmi_call_fuzz [--seed S] [--count N] [--batch B] [--timeout SECONDS] [--max-failures F]
-//                 [--in-process] [--trace] [--source-dir DIR] [--work-dir DIR]
+//                 [--in-process] [--trace] [--source-dir DIR] [--work-dir DIR] [--drives]
+//
+// --drives: every sequence is one of random drive descriptions (Plan::Drive, drive_mutations.h)
+// through the export's files and the FMU's instantiation and initialization.
 //
 // Sequence k runs with seed S + k; a failing sequence is printed with its seed and replays alone
 // with --seed <its seed> --count 1. Exit status 0 when every sequence passed.
@@ -34,7 +37,7 @@ constexpr std::uint64_t kDefaultCount = 3000;
 void usage() {
   std::fprintf(stderr,
                "usage: fmi_call_fuzz [--seed S] [--count N] [--batch B] [--timeout SECONDS] [--max-failures F]\n"
-               "                     [--in-process] [--trace] [--source-dir DIR] [--work-dir DIR]\n"
+               "                     [--in-process] [--trace] [--source-dir DIR] [--work-dir DIR] [--drives]\n"
                "  --seed S          sequence k runs with seed S + k (default 1)\n"
                "  --count N         number of sequences (default %" PRIu64 ")\n"
                "  --batch B         sequences per child process (default 100)\n"
@@ -44,16 +47,19 @@ void usage() {
                "  --trace           print every FMI call with its status and the FMU's message\n"
                "  --source-dir DIR  the source tree (drive files; default %s)\n"
                "  --work-dir DIR    where the FMUs' resources are written (default %s; one per\n"
-               "                    program running at the same time)\n",
+               "                    program running at the same time)\n"
+               "  --drives          random drive descriptions instead of call sequences: each through the\n"
+               "                    export's files, the FMU's instantiation and initialization\n",
                kDefaultCount, CHAINDRIVE_SOURCE_DIR, CHAINDRIVE_FUZZ_WORK_DIR);
 }
 
-bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir, std::string& workDir) {
+bool parseOptions(int argc, char** argv, FuzzOptions& o, std::string& sourceDir, std::string& workDir, bool& drives) {
   o.count = kDefaultCount;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool hasValue = i + 1 < argc;
     if (arg == "--in-process") o.inProcess = true;
+    else if (arg == "--drives") drives = true;
     else if (arg == "--trace") o.trace = true;
     else if (arg == "--seed" && hasValue) o.seed = std::strtoull(argv[++i], nullptr, 10);
     else if (arg == "--count" && hasValue) o.count = std::strtoull(argv[++i], nullptr, 10);
@@ -89,6 +95,16 @@ FuzzPaths pathsIn(const std::string& sourceDir, const std::string& workDir) {
   return p;
 }
 
+// The drives the drive plan mutates: the default, its spring-damper variant and the test drives.
+void addDriveBases(const std::string& sourceDir, const std::string& workDir, FuzzPaths& p) {
+  p.drivePlanOnly = true;
+  p.driveWorkDir = workDir + "/drive";
+  p.driveBases = {std::string(defaultDriveJson())};
+  for (const char* file : {"/tests/data/drives/default_drive_spring_damper.json", "/tests/drives/dohc_8mm.json",
+                           "/tests/drives/sohc_single_cam.json", "/tests/drives/diesel_pump.json", "/tests/drives/idler.json"})
+    p.driveBases.push_back(readDescriptionFile(sourceDir + file));
+}
+
 void printSummary(const FuzzOptions& o, const FuzzTotals& t, double seconds, std::size_t failures) {
   const FuzzTotals::Reach all = t.all();
   std::printf("fmi_call_fuzz: %" PRIu64 " sequences, seeds %" PRIu64 "..%" PRIu64 " (--seed %" PRIu64 " --count %" PRIu64
@@ -104,6 +120,9 @@ void printSummary(const FuzzOptions& o, const FuzzTotals& t, double seconds, std
   std::printf("  reached initialization: %" PRIu64 " sequences (%" PRIu64 " initializations); completed a doStep: %" PRIu64
               " sequences (%" PRIu64 " doSteps)\n",
               all.initialized, t.initializations, all.stepped, t.completedSteps);
+  if (t.plans[static_cast<std::uint32_t>(Plan::Drive)].sequences > 0)
+    std::printf("  drives: %" PRIu64 " generated, %" PRIu64 " exported (the rest refused by the export with one line)\n",
+                t.plans[static_cast<std::uint32_t>(Plan::Drive)].sequences, t.drivesExported);
   std::printf("  FMI calls: %" PRIu64 " (OK %" PRIu64 ", warning %" PRIu64 ", discard %" PRIu64 ", error %" PRIu64 ")\n",
               t.calls, t.statusCounts[0], t.statusCounts[1], t.statusCounts[2], t.statusCounts[3]);
   std::printf("  failing sequences: %zu\n", failures);
@@ -115,7 +134,8 @@ int main(int argc, char** argv) {
   FuzzOptions options;
   std::string sourceDir = CHAINDRIVE_SOURCE_DIR;
   std::string workDir = CHAINDRIVE_FUZZ_WORK_DIR;
-  if (!parseOptions(argc, argv, options, sourceDir, workDir)) {
+  bool drives = false;
+  if (!parseOptions(argc, argv, options, sourceDir, workDir, drives)) {
     usage();
     return 2;
   }
@@ -127,7 +147,9 @@ int main(int argc, char** argv) {
     std::printf("fmi_call_fuzz: the default drive's interface changed: %s (tests/fuzz/fuzz_interface.h)\n", wrong.c_str());
     return 1;
   }
-  const std::vector<FuzzFailure> failures = runSequences(options, pathsIn(sourceDir, workDir), totals);
+  FuzzPaths paths = pathsIn(sourceDir, workDir);
+  if (drives) addDriveBases(sourceDir, workDir, paths);
+  const std::vector<FuzzFailure> failures = runSequences(options, paths, totals);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printSummary(options, totals, seconds, failures.size());
   for (const FuzzFailure& f : failures)

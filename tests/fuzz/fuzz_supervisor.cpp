@@ -35,6 +35,7 @@ void FuzzTotals::add(const SequenceStats& s) {
   calls += s.calls;
   initializations += s.initializations;
   completedSteps += s.completedSteps;
+  drivesExported += s.driveExported;
   for (std::size_t i = 0; i < 4; ++i) statusCounts[i] += s.statusCounts[i];
 }
 

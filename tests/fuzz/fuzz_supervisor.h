@@ -29,6 +29,7 @@ struct FuzzTotals {
   Reach plans[kPlanCount];
   std::vector<Reach> combinations;  // of Plan::OtherMethod
   std::uint64_t calls = 0, initializations = 0, completedSteps = 0;
+  std::uint64_t drivesExported = 0;  // Plan::Drive: drives whose FMU files the export wrote
   std::uint64_t statusCounts[4] = {};
 
   void add(const SequenceStats& s);

@@ -23,6 +23,11 @@ struct FuzzPaths {
   std::shared_ptr<const DriveInterface> springDamperInterface;
   std::vector<fmu::Variable> springDamperVariables;  // (pointing into springDamperInterface)
   std::string notADriveFile;  // an existing file that is not JSON
+  // Plan::Drive: every sequence mutates one of these drive texts (the default and the test drives)
+  // and writes its FMU's files into driveWorkDir
+  bool drivePlanOnly = false;
+  std::vector<std::string> driveBases;
+  std::string driveWorkDir;
 };
 
 /// An fmuResourceLocation and whether it is the file URI of the resources folder.
