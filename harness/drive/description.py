@@ -7,6 +7,7 @@ import subprocess
 import tempfile
 
 from .. import paths
+from ..errors import tool_failure
 
 DEFAULT_DRIVE = paths.ROOT / "src" / "drives" / "default_drive.json"
 
@@ -112,7 +113,9 @@ def geometry(drive=None):
         cmd = [paths.executable("chaindrive-info"), "--geometry", tmp, "--quiet"]
         if drive:
             cmd += ["--drive", str(drive)]
-        subprocess.run(cmd, check=True, capture_output=True, text=True)
+        done = subprocess.run(cmd, capture_output=True, text=True)
+        if done.returncode != 0:  # (a drive that does not load or close: its one line, no traceback)
+            raise tool_failure("chaindrive-info", done.stderr)
         with open(tmp) as f:
             return json.load(f)
     finally:

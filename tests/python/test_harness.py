@@ -10,6 +10,7 @@ import pytest
 from harness import paths, runs
 from harness.plots import drive_picture, plots
 from harness.tables import tables
+from harness_cli import harness, one_error_line
 
 
 def test_short_run_writes_finite_outputs(tmp_path):
@@ -63,6 +64,15 @@ def test_output_step_is_rounded_to_whole_grid_steps(tmp_path):
 def test_drive_picture(tmp_path):
     p = drive_picture.drive_picture(tmp_path / "drive.png")
     assert p.stat().st_size > 20000
+
+
+def test_the_picture_of_a_drive_that_does_not_close_is_one_error_line(tmp_path):
+    """The idler drive with ten links too few: the closure's own line, no traceback."""
+    drive = json.loads((paths.ROOT / "tests" / "drives" / "idler.json").read_text())
+    drive["chain"]["numberOfLinks"] = 120
+    (tmp_path / "short.json").write_text(json.dumps(drive))
+    line = one_error_line(*harness("picture", "--drive", str(tmp_path / "short.json"), "--out", str(tmp_path / "p.png"))[::2])
+    assert "chain.numberOfLinks: 120 links cannot close around the layout" in line
 
 
 
