@@ -88,6 +88,7 @@ FuzzPaths pathsIn(const std::string& sourceDir, const std::string& workDir) {
   const std::string springDamper = sourceDir + "/tests/data/drives/default_drive_spring_damper.json";
   auto table = std::make_shared<DriveInterface>(writeFmuFiles(workDir + "/spring_damper", readDescriptionFile(springDamper)));
   p.springDamperResourceDir = workDir + "/spring_damper/resources";
+  p.springDamperFile = springDamper;
   p.springDamperGuid = table->guid;
   p.springDamperVariables = fmu::protocolVariables(*table);
   p.springDamperInterface = table;

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "fuzz_values.h"
+#include "run/drive_defaults.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #include <sanitizer/lsan_interface.h>
@@ -239,10 +240,24 @@ void warmSpanCalibration(const FuzzPaths& paths) {
   fmi2FreeInstance(c);
 }
 
+// Likewise the spring-damper variant's link steps: another drive than the default, so that a
+// sequence on its FMU with solver.step 0 has its step checked by the probe (run/step_probe.h), a
+// ladder of 0.2 s runs, seconds each under the sanitizers; made here and cached, outside any watchdog.
+void warmStepProbes(const FuzzPaths& paths) {
+  try {
+    const Model m = assemble(loadDriveDescription(paths.springDamperFile));
+    for (const bool clearanceOrRigid : {false, true})
+      driveRow(m, solverDefaults(Scene::TimingDrive, Fidelity::Link, clearanceOrRigid));
+  } catch (const std::exception& e) {
+    std::printf("fmi_call_fuzz: the spring-damper drive's step probe was not made beforehand: %s\n", e.what());
+  }
+}
+
 }  // namespace
 
 std::vector<FuzzFailure> Supervisor::run() {
   warmSpanCalibration(paths_);
+  warmStepProbes(paths_);
   std::uint64_t next = 0;
   while (next < o_.count && failures_.size() < o_.maxFailures)
     next = runBatch(next, std::min(o_.count, next + std::max<std::uint64_t>(o_.batch, 1)));

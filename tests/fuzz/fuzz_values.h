@@ -19,7 +19,7 @@ struct FuzzPaths {
   std::string resourceDir;    // the default drive's FMU's resources folder (its drive and interface)
   std::string driveFile;      // a valid drive description (the default drive's file)
   // the resources of the FMU of the default drive with the spring-damper tensioner law, its GUID
-  std::string springDamperResourceDir, springDamperGuid;
+  std::string springDamperResourceDir, springDamperGuid, springDamperFile;
   std::shared_ptr<const DriveInterface> springDamperInterface;
   std::vector<fmu::Variable> springDamperVariables;  // (pointing into springDamperInterface)
   std::string notADriveFile;  // an existing file that is not JSON
