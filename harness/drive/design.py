@@ -1,5 +1,6 @@
-"""Designs the default drive (paper Fig. 11, a DOHC four-cylinder timing drive) and writes
-src/drives/default_drive.json.
+"""Designs the default drive (paper Fig. 11, a DOHC four-cylinder timing drive) and writes it where
+--out says (default results/design/default_drive.json); a file of the repository (one git tracks,
+src/drives/default_drive.json among them) only with --overwrite-tracked.
 
 The layout follows the typical numbers of a passenger-car timing drive (see docs/default_drive.md, "The
 default drive"): crankshaft sprocket z=21 with prescribed motion, two camshaft sprockets z=42 (2:1),
@@ -9,17 +10,19 @@ straight spans (a given deflection of the chain), and the camshaft height is the
 the chain closes with exactly 120 links with the tension guide at its drawn (nominal) pose, as
 reported by `chaindrive-info`.
 
-    python -m harness design-drive --info build/chaindrive-info [--out FILE]
+    python -m harness design-drive --info build/chaindrive-info [--out FILE] [--overwrite-tracked]
 """
 import json
 import math
 import os
+import pathlib
 import re
 import subprocess
 import sys
 import tempfile
 
 from .. import paths
+from ..errors import UserError
 
 # ---- design values (SI) and their sources -------------------------------------------------
 PITCH = 0.009525          # ISO 606 06B-1 (3/8 in)
@@ -206,10 +209,35 @@ def closure_angle(info, drive):
 
 def add_arguments(ap):
     ap.add_argument("--info", required=True, help="path of the chaindrive-info executable")
-    ap.add_argument("--out", default=str(paths.ROOT / "src" / "drives" / "default_drive.json"))
+    ap.add_argument("--out", default=str(paths.RESULTS / "design" / "default_drive.json"),
+                    help="the drive file to write (default: results/design/default_drive.json)")
+    ap.add_argument("--overwrite-tracked", action="store_true",
+                    help="allow --out to be a file of the repository that git tracks (src/drives/default_drive.json)")
+
+
+def tracked(path):
+    """Whether git tracks the file in this checkout (False outside one, or without git)."""
+    try:
+        done = subprocess.run(["git", "-C", str(paths.ROOT), "ls-files", "--error-unmatch", str(path)],
+                              capture_output=True, text=True)
+    except FileNotFoundError:
+        return False
+    return done.returncode == 0
+
+
+def check_out(args):
+    """The file to write: never over a tracked one unless asked (a design run is not a decision to
+    replace the default drive, whose every committed result follows from it)."""
+    out = pathlib.Path(args.out).resolve()
+    if tracked(out) and not args.overwrite_tracked:
+        raise UserError(f"--out {args.out}: a file of the repository (git tracks it); give --overwrite-tracked "
+                        "to replace it, or another --out")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    return out
 
 
 def run(args):
+    out = check_out(args)
     # scan the camshaft height for closure, then secant until the tension guide closes the chain
     # at its drawn pose
     found = []
@@ -236,7 +264,7 @@ def run(args):
         h1 = h2
         a1, msg = closure_angle(args.info, build(h1))
     drive = build(h1)
-    with open(args.out, "w") as f:
+    with open(out, "w") as f:
         json.dump(drive, f, indent=2)
         f.write("\n")
     print(f"camshaft height {h1 * 1e3:.6f} mm, closure angle {math.degrees(a1):.3e} deg -> {args.out}")

@@ -99,3 +99,16 @@ def test_tool_failure_joins_the_tools_lines_and_caps_them():
     e = tool_failure("chaindrive-cvt", "chaindrive-cvt: error: a | b\nc\n\nd\ne\n", limit=4)
     assert isinstance(e, UserError) and isinstance(e, RuntimeError)
     assert str(e) == "chaindrive-cvt: a | b | c | d | and 1 more"
+
+
+def test_design_drive_writes_over_no_tracked_file_unless_asked():
+    """design-drive's --out names a file of the repository (the default drive): refused before any
+    design run, the file untouched; --overwrite-tracked is the way to replace it."""
+    if not (paths.ROOT / ".git").exists():
+        pytest.skip("not a git checkout: nothing is tracked")
+    default_drive = paths.ROOT / "src" / "drives" / "default_drive.json"
+    before = default_drive.read_bytes()
+    line = one_error_line(*harness("design-drive", "--info", paths.executable("chaindrive-info"),
+                                   "--out", str(default_drive))[::2])
+    assert "a file of the repository (git tracks it); give --overwrite-tracked" in line, line
+    assert default_drive.read_bytes() == before
