@@ -385,6 +385,18 @@ int nearestBracket(const ClosureScan& sc) {
   return best;
 }
 
+// What to change where the links do not fit: the even link counts (a roller chain's inner and outer
+// links alternate) the path holds over the closure range, or how far the path is from the nearest.
+std::string closingCounts(double lo, double hi) {
+  const long long first = 2 * static_cast<long long>(std::ceil(lo / 2.0)), last = 2 * static_cast<long long>(std::floor(hi / 2.0));
+  if (first <= last)
+    return "; " + std::to_string(first) + (last > first ? " to " + std::to_string(last) : "") + " links close it";
+  const long long below = last, above = first;  // the even counts either side of the range
+  return "; no even count closes it: the path is " + fmt(lo - static_cast<double>(below), 3) + " links longer than " +
+         std::to_string(below) + " and " + fmt(static_cast<double>(above) - hi, 3) + " shorter than " +
+         std::to_string(above) + " (change its length by that many pitches: move a sprocket or the closure's element)";
+}
+
 // Why the chain cannot close: the route has no path at the drawn pose, or the number of links
 // does not fit (with the range of links the path holds), or no path over the whole range.
 DescriptionError noClosure(const ClosureDesc& cl, Layout& layout, const ClosureScan& sc, int n) {
@@ -409,7 +421,7 @@ DescriptionError noClosure(const ClosureDesc& cl, Layout& layout, const ClosureS
     return DescriptionError({"chain.numberOfLinks: " + std::to_string(n) + " links cannot close around the layout; "
                              "over the closure range [" + fmt(cl.rangeMin) + ", " + fmt(cl.rangeMax) + "] " +
                              unitName + " of '" + cl.element + "' the path holds between " + fmt(lo, 5) + " and " +
-                             fmt(hi, 5) + " links"});
+                             fmt(hi, 5) + " links" + closingCounts(lo, hi)});
   return DescriptionError({"chain.route: no valid chain path over the closure range of '" + cl.element + "'"});
 }
 

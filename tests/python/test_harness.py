@@ -73,6 +73,7 @@ def test_the_picture_of_a_drive_that_does_not_close_is_one_error_line(tmp_path):
     (tmp_path / "short.json").write_text(json.dumps(drive))
     line = one_error_line(*harness("picture", "--drive", str(tmp_path / "short.json"), "--out", str(tmp_path / "p.png"))[::2])
     assert "chain.numberOfLinks: 120 links cannot close around the layout" in line
+    assert line.endswith("the path holds between 129.95 and 130.07 links; 130 links close it"), line
 
 
 

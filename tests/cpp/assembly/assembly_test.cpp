@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "dynamics/contact_kinematics.h"
 #include "dynamics/data.h"
@@ -66,4 +68,28 @@ TEST(Assembly, NominalPoseHasNoPenetrationAndPreloadConverges) {
   EXPECT_TRUE(rep.converged) << rep.message;
   EXPECT_LE(rep.residual, 1e-6);
   std::printf("preload: %s, %.3f s CPU\n", rep.message.c_str(), rep.cpuSeconds);
+}
+
+// A chain that does not close says what to change: the even link counts the path holds over the
+// closure range, or, where none lies in it, how many pitches the path is from the nearest two.
+TEST(Assembly, AChainThatDoesNotCloseNamesTheCountsThatWould) {
+  auto closureError = [](const std::function<void(nlohmann::json&)>& edit) {
+    try {
+      assemble(modifiedDefault(edit));
+    } catch (const DescriptionError& e) {
+      return std::string(e.what());
+    }
+    return std::string("assembled");
+  };
+  const std::string shorter = closureError([](nlohmann::json& j) { j["chain"]["numberOfLinks"] = 110; });
+  EXPECT_NE(shorter.find("110 links cannot close around the layout"), std::string::npos) << shorter;
+  EXPECT_NE(shorter.find("; 120 links close it"), std::string::npos) << shorter;
+  // the camshafts 4 mm higher: the path, about 0.8 links longer, lies between two even counts
+  const std::string between = closureError([](nlohmann::json& j) {
+    for (auto& s : j["sprockets"])
+      if (s["motion"] == "free") s["center"][1] = s["center"][1].get<double>() + 0.004;
+  });
+  EXPECT_NE(between.find("no even count closes it: the path is "), std::string::npos) << between;
+  EXPECT_NE(between.find(" links longer than 120 and "), std::string::npos) << between;
+  EXPECT_NE(between.find(" shorter than 122 (change its length"), std::string::npos) << between;
 }
