@@ -441,8 +441,47 @@ double refineClosure(ClosureGap& gap, const ClosureScan& sc, int best) {
   return x;
 }
 
+// Whether the open segments a-b and c-d cross (each one's ends strictly on both sides of the other).
+bool segmentsCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const double abc = cross(b - a, c - a), abd = cross(b - a, d - a);
+  const double cda = cross(d - c, a - c), cdb = cross(d - c, b - c);
+  return ((abc > 0.0 && abd < 0.0) || (abc < 0.0 && abd > 0.0)) && ((cda > 0.0 && cdb < 0.0) || (cda < 0.0 && cdb > 0.0));
+}
+
+// The taut path must be one loop. Every sprocket is wrapped from inside the loop (the path turns
+// around it in the drive's sense); one that lies inside it, where the chain would wrap it from
+// outside (a back-side idler), makes the spans to and from it cross: refused by name, where the
+// link count alone would have read as a chain too short.
+void checkOneLoop(const DriveDescription& desc, const ChainPath& path) {
+  const auto& segs = path.segments();
+  const std::size_t n = desc.chain.route.size();
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    for (std::size_t j = i + 1; j < segs.size(); ++j) {
+      if (segs[i].isArc || segs[j].isArc || !segmentsCross(segs[i].from, segs[i].to, segs[j].from, segs[j].to)) continue;
+      const std::size_t a = static_cast<std::size_t>(segs[i].routeIndex), b = static_cast<std::size_t>(segs[j].routeIndex);
+      const auto& route = desc.chain.route;
+      if ((a + 1) % n == b || (b + 1) % n == a) {  // the spans to and from one element
+        const std::string& e = route[(a + 1) % n == b ? b : a];
+        throw DescriptionError({"chain.route: '" + e + "' lies inside the chain's loop, where the chain would wrap it "
+                                "from outside (a back-side idler): the spans to and from it cross; the model wraps every "
+                                "sprocket from inside the loop: move it outside the loop or leave it out"});
+      }
+      throw DescriptionError({"chain.route: the spans leaving '" + route[a] + "' and '" + route[b] +
+                              "' cross: the route's order does not make one loop"});
+    }
+}
+
 // The closure value: the root of the gap nearest the drawn pose over the closure range.
 double solveClosure(const ClosureDesc& cl, const Model& m, Layout& layout) {
+  {  // (at the drawn pose: a route that is no loop is named before its length is)
+    std::vector<RouteCircle> drawn;
+    if (layout.circles(0.0, drawn).empty()) {
+      try {
+        checkOneLoop(m.description, ChainPath::through(drawn));
+      } catch (const std::invalid_argument&) {  // (no path at the drawn pose: the scan says why)
+      }
+    }
+  }
   ClosureGap gap(layout, m.chain.links, m.chain.pitch);
   const ClosureScan sc = scanClosure(cl, gap);
   const int best = nearestBracket(sc);
@@ -456,6 +495,7 @@ void applyClosure(const ClosureDesc& cl, Model& m, Layout& layout, double x) {
   std::vector<RouteCircle> circles;
   if (layout.circles(x, circles) != "") throw DescriptionError({"chain.route: internal: lost the path at the closure"});
   m.path = ChainPath::through(circles);
+  checkOneLoop(m.description, m.path);
   m.assembly.closureElement = cl.element;
   m.assembly.closureValue = x;
   m.assembly.pathLength = m.path.length();

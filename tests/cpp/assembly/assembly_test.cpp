@@ -93,3 +93,31 @@ TEST(Assembly, AChainThatDoesNotCloseNamesTheCountsThatWould) {
   EXPECT_NE(between.find(" links longer than 120 and "), std::string::npos) << between;
   EXPECT_NE(between.find(" shorter than 122 (change its length"), std::string::npos) << between;
 }
+
+// A sprocket inside the chain's loop, which the chain would wrap from outside (a back-side idler
+// under the span between the camshafts), is refused by its name, with the link count that would
+// have closed a crossed loop too: the model wraps every sprocket from inside the loop.
+TEST(Assembly, ABackSideIdlerIsRefusedByName) {
+  for (const int links : {120, 156}) {  // (156: the count a crossed path would have closed with)
+    try {
+      assemble(modifiedDefault([links](nlohmann::json& j) {
+        nlohmann::json idler = j["sprockets"][2];
+        idler["name"] = "backIdler";
+        idler["teeth"] = 19;
+        idler["motion"] = "idler";
+        idler["inertia"] = 1e-4;
+        idler["center"] = {0.0, 0.335140922 - 0.09};
+        j["sprockets"].push_back(idler);
+        auto& route = j["chain"]["route"];
+        route.insert(route.begin() + 3, "backIdler");  // between the camshafts
+        j["chain"]["numberOfLinks"] = links;
+      }));
+      ADD_FAILURE() << links << " links: assembled";
+    } catch (const DescriptionError& e) {
+      EXPECT_NE(std::string(e.what()).find("chain.route: 'backIdler' lies inside the chain's loop, where the chain "
+                                           "would wrap it from outside (a back-side idler)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
