@@ -2,6 +2,7 @@
 import platform
 import re
 import subprocess
+import sys
 
 import numpy as np
 
@@ -45,6 +46,8 @@ def run(out_csv, rpm=3000.0, cycles=2.0, duration=None, integrator=None, rtol=No
     p = subprocess.run(cmd, capture_output=True, text=True)
     if check and p.returncode not in (0, 3):
         raise RuntimeError(f"chaindrive-run failed ({p.returncode}): {p.stderr.strip()}")
+    if p.stderr.strip():  # (its notes, e.g. an output step rounded to whole steps: never dropped)
+        sys.stderr.write(p.stderr if p.stderr.endswith("\n") else p.stderr + "\n")
     return p.returncode, p.stdout, parse_summary(p.stdout)
 
 

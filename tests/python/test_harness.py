@@ -89,3 +89,13 @@ def test_dominant_orders_are_peaks_not_leakage_bins():
     orders = [o for o, _ in found]
     assert abs(orders[0] - 8.08) < 0.1, found
     assert abs(orders[1] - 2.0) < 1e-6 and abs(orders[2] - 13.0) < 1e-6, found
+
+
+def test_runs_forwards_the_tools_notes(tmp_path, capfd):
+    """chaindrive-run's notes on stderr reach the caller's stderr (an output step rounded to whole
+    grid steps: 1e-5 s on the span model's 33.3 us grid), and the CSV's own time column has the
+    step it wrote."""
+    runs.run(tmp_path / "out.csv", duration=1e-3, output_step=1e-5, fidelity="span")
+    assert "outputs every 3.33333e-05 s" in capfd.readouterr().err
+    t = runs.read_csv(tmp_path / "out.csv")["time"]
+    assert np.diff(t) == pytest.approx(1e-4 / 3, rel=1e-9)
