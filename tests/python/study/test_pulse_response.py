@@ -40,3 +40,16 @@ def test_samples_not_equally_spaced_are_refused():
     t = np.array([0.0, 1e-5, 2e-5, 4e-5])
     with pytest.raises(ValueError, match="not equally spaced"):
         pr.sampling_step(t)
+
+
+@pytest.mark.parametrize("name", STEPS)
+def test_the_fit_finds_a_known_mode_finer_than_a_bin(name):
+    """The damped sinusoid fitted over the same window: its frequency within 0.5 % (the bin is 13 %
+    of 375 Hz), its damping ratio within 5 %, whatever the sampling step."""
+    t, pulsed, plain = known_signals(STEPS[name])
+    ta, difference, plain_after = pr.filtered(t, pulsed, plain)
+    rough = pr.figures(ta, difference, plain_after)
+    frequency, rate, ratio = pr.fit_mode(ta, difference, rough["frequency_Hz"], rough["decayRate_per_s"])
+    assert frequency == pytest.approx(FREQUENCY, rel=0.005)
+    assert ratio == pytest.approx(DAMPING_RATIO, rel=0.05)
+    assert rate == pytest.approx(DAMPING_RATIO * 2.0 * math.pi * FREQUENCY, rel=0.05)
