@@ -58,7 +58,8 @@ def test_short_step_study_compares_with_the_reference(tmp_path):
     assert "## 3000 rpm (reference: 25 us)" in (out / "steps.md").read_text()
 
 
-@pytest.mark.parametrize("argv, message", [(["--rpm", "50"], "--rpm 50"), (["--pulse", "0"], "--pulse 0")])
+@pytest.mark.parametrize("argv, message", [(["--rpm", "50"], "--rpm 50"), (["--pulse", "0"], "--pulse 0"),
+                                           (["--replicas", "1"], "--replicas 1")])
 def test_pulse_response_option_errors_name_the_option(argv, message, capsys):
     with pytest.raises(SystemExit):
         parse(pulse_response, argv)
@@ -67,10 +68,13 @@ def test_pulse_response_option_errors_name_the_option(argv, message, capsys):
 
 def test_pulse_response_gives_each_models_mode_and_decay(tmp_path):
     out = tmp_path / "pulse"
-    assert cli.main(["pulse-response", "--out", str(out)]) == 0
+    assert cli.main(["pulse-response", "--replicas", "2", "--out", str(out)]) == 0
     found = json.loads((out / "pulse.json").read_text())["fidelities"]
     for fidelity in ("link", "span"):
         f = found[fidelity]
         assert f["largest_rad"] > 0.0 and f["frequency_Hz"] > pulse_response.HIGH_PASS
         assert math.isfinite(f["decayRate_per_s"]) and max(f["envelopeOverLargest"].values()) <= 1.0
+        fitted = f["fitted"]
+        assert len(fitted["pairs"]) == 2 and fitted["frequency_Hz"]["mean"] > pulse_response.HIGH_PASS
+        assert fitted["frequency_Hz"]["ci95"] >= 0.0 and 0.0 < fitted["dampingRatio"]["mean"] < 1.0
     assert "| link |" in (out / "pulse.md").read_text()
