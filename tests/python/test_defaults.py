@@ -289,3 +289,21 @@ def test_a_blow_up_names_its_step_and_the_step_to_try(table):
     assert p.returncode == 3
     assert f"above this drive's estimated stable step: try --step {link['step_s']:.4g} (1e-4/{link['divisions']})" \
         in p.stdout, p.stdout
+
+
+@pytest.mark.parametrize("name", ["diesel_pump", "idler"])
+def test_a_test_drives_step_is_its_probes_first_passing_rung(name, table):
+    """chaindrive-info --defaults --drive shows the probe of each link row (run/step_probe.h): its runs
+    from the estimate's division up, every one before the last beyond the balance limit, the last
+    within it and the row's step; the pump and idler drives' real-time rows start at the default's
+    1e-4/28 and end shorter; the default drive is not probed."""
+    link = drive_table(TEST_DRIVES / f"{name}.json")["timing"]["link"]
+    for row in (link, link["clearanceOrRigid"]):
+        probe = row["probe"]
+        runs = probe["runs"]
+        assert probe["passed"] and runs[0]["divisions"] == row["estimateDivisions"], row
+        assert runs[-1]["divisions"] == row["divisions"] and row["step_s"] == 1e-4 / row["divisions"]
+        assert abs(runs[-1]["energyBalance"]) <= probe["balanceLimit"]
+        assert all("failure" in r or abs(r["energyBalance"]) > probe["balanceLimit"] for r in runs[:-1])
+    assert link["estimateDivisions"] == 28 and link["divisions"] > 28
+    assert "probe" not in table["timing"]["link"]  # (the default drive: its measured steps)
