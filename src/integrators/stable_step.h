@@ -20,8 +20,11 @@ inline double verletStableStep(double omega, double rate) {
 /// above `limit` (n >= 1; limit > 0): the smallest n with interval / n <= limit, a limit that
 /// equals a division interval / n within a relative 1e-12 taken as that division (so that a limit
 /// computed as margin x estimate lands on the step it was calibrated to, whatever its rounding).
+/// A limit so small that n would not fit (or not a number) gives kNoDivision: no step to take.
+constexpr long long kNoDivision = 1LL << 62;
 inline long long divisionsWithin(double interval, double limit) {
   const double n = std::ceil(interval / limit * (1.0 - 1e-12));
+  if (!(n < static_cast<double>(kNoDivision))) return kNoDivision;
   return n < 1.0 ? 1 : static_cast<long long>(n);
 }
 

@@ -37,6 +37,10 @@ constexpr MeasuredLimit kDefaultDriveLimits[] = {
 // joint's gain was not measured larger).
 constexpr double kJointDampingGainExponent = 0.75;
 
+// The most steps per kStepInterval a drive's row may take (a step of 0.1 ns): a shorter estimate
+// comes from a description no run can take (a link of 1e-300 kg), named rather than run.
+constexpr long long kMostDivisions = 1000000;
+
 // The real-time method takes the joints' damping implicitly; every other method is measured as
 // plain Verlet (the row of joints with clearance or rigid contacts).
 bool jointDampingExplicit(IntegratorMethod method) { return method != IntegratorMethod::FixedVerletImplicitJointDamping; }
@@ -110,6 +114,9 @@ std::string probeLinkRow(const Model& m, DriveRow& r) {
   if (m.description.canonicalText == defaultEstimates().canonicalText) return "";
   if (m.description.contact.method != ContactMethod::Compliant)
     return "; not checked on the drive's dynamics (its contacts are rigid; the probe runs compliant ones)";
+  if (r.divisions > kProbeMostDivisions)
+    return "; not checked on the drive's dynamics (a step below " + division(kProbeMostDivisions) +
+           ": a probe of " + format("%g", kProbeDuration) + " s would take minutes)";
   try {
     r.probe = probeStep(m, r.row.method, r.divisions);
   } catch (const std::exception& e) {  // (a drive the link model cannot start: its run says why)
@@ -140,6 +147,11 @@ DriveRow driveRow(const Model& m, const SolverDefaults& tableRow, bool checkOnDy
   r.divisions = std::isfinite(r.estimate) ? divisionsWithin(kStepInterval, r.margin * r.estimate) : 1;
   const bool capped = span && r.divisions < tableDivisions;
   if (capped) r.divisions = tableDivisions;
+  if (r.divisions > kMostDivisions)
+    throw DescriptionError({std::string(span ? "the span model's" : "the link model's") + " estimated stable step " +
+                            format("%.3g", r.estimate) + " s (stiffest: " + r.limitedBy + ") is below " +
+                            format("%.3g", kStepInterval / static_cast<double>(kMostDivisions)) +
+                            " s: no run can take it; check the chain's link mass and inertia and its stiffnesses"});
   r.estimateDivisions = r.divisions;
   const std::string probed = span || !checkOnDynamics ? "" : probeLinkRow(m, r);
   r.row.step = kStepInterval / static_cast<double>(r.divisions);

@@ -323,7 +323,11 @@ std::string Simulation::blowUpAdvice(double step) const {
                                      : defaultStepRow(ownTableRow(m, options_), options_.integrator.method);
   try {
     return stepAdvice(m, stable, step, options_.stepName);
-  } catch (const std::exception& e) {  // (no estimate: the failure stands alone)
+  } catch (const DescriptionError& e) {  // (no estimate: the failure stands alone, in one line)
+    std::string why;
+    for (const std::string& p : e.problems()) why += (why.empty() ? "" : "; ") + p;
+    return "no stable step estimated (" + why + ")";
+  } catch (const std::exception& e) {
     return std::string("no stable step estimated (") + e.what() + ")";
   }
 }

@@ -103,13 +103,13 @@ ProbedStep probeStep(const Model& m, IntegratorMethod method, long long fromDivi
   ProbedStep p;
   const std::string file = cacheFile(m, method, fromDivisions);
   if (!file.empty() && readCached(file, p)) return p;
-  long long n = fromDivisions;
-  for (int k = 0; k < kProbeMaxRuns && !p.passed; ++k) {
-    if (k > 0) n = std::max(n + 1, static_cast<long long>(std::ceil(kProbeLadderFactor * static_cast<double>(n))));
+  // the rungs from the estimate's division, each a tenth more steps, up to kProbeMostDivisions
+  for (long long n = fromDivisions; static_cast<int>(p.runs.size()) < kProbeMaxRuns && !p.passed && n <= kProbeMostDivisions;
+       n = std::max(n + 1, static_cast<long long>(std::ceil(kProbeLadderFactor * static_cast<double>(n))))) {
     p.runs.push_back(probeRun(m, method, n));
     p.passed = p.runs.back().passes();
   }
-  p.divisions = n;
+  p.divisions = p.runs.empty() ? fromDivisions : p.runs.back().divisions;  // (the last rung tried)
   if (!file.empty()) span::writeCacheFile(span::calibrationCacheDir(), file, toJson(p).dump(1) + "\n");
   return p;
 }

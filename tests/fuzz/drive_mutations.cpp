@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -163,6 +164,37 @@ std::string restructure(Rng& rng, json& j) {
   }
 }
 
+// A plausible change: a drive an engineer might draw instead, most of which still close and run
+// (the tension guide's closure range takes up a small change of the path).
+std::string nudge(Rng& rng, json& j) {
+  switch (rng.below(4)) {
+    case 0: {
+      json* s = element(rng, j, "sprockets");
+      if (!s) return "nothing";
+      shiftPoints((*s)["center"], rng.uniform(-0.003, 0.003), rng.uniform(-0.003, 0.003));
+      return "sprocket " + (*s)["name"].dump() + " moved by up to 3 mm";
+    }
+    case 1: {
+      json* g = element(rng, j, "guides");
+      if (!g) return "nothing";
+      shiftPoints(*g, rng.uniform(-0.001, 0.001), rng.uniform(-0.001, 0.001));
+      return "guide " + (*g)["name"].dump() + " moved by up to 1 mm";
+    }
+    default: {  // a positive number scaled by 1/2 to 2 (an inertia, a stiffness, a damping, a force)
+      std::vector<std::string> positive;
+      const json flat = j.flatten();
+      for (const auto& item : flat.items())
+        if (item.value().is_number_float() && item.value().get<double>() > 0.0 && item.key().find("center") == std::string::npos &&
+            item.key().find("pivot") == std::string::npos)
+          positive.push_back(item.key());
+      if (positive.empty()) return "nothing";
+      const json::json_pointer at(rng.pick(positive));
+      j[at] = j[at].get<double>() * rng.logUniform(0.5, 2.0);
+      return at.to_string() + " = " + j[at].dump();
+    }
+  }
+}
+
 std::string mutate(Rng& rng, json& j) {
   switch (rng.below(8)) {
     case 0:
@@ -191,11 +223,12 @@ std::string withRawNumbers(std::string text) {
 std::string mutatedDrive(Rng& rng, const std::vector<std::string>& bases, std::string& what) {
   json j = json::parse(rng.pick(bases));
   what.clear();
+  const bool plausible = rng.chance(0.4);  // (else degenerate: mostly refused, which is their test)
   const std::size_t count = 1 + rng.below(3);
   for (std::size_t i = 0; i < count; ++i) {
     std::string m;
     try {
-      m = mutate(rng, j);
+      m = plausible ? nudge(rng, j) : mutate(rng, j);
     } catch (const json::exception& e) {  // (an earlier mutation changed the shape this one expects)
       m = std::string("skipped: ") + e.what();
     }

@@ -1,5 +1,7 @@
 // Random drive descriptions for the drive plan of the fuzz (call_sequence.h, Plan::Drive): a valid
-// drive (the default or a test drive) with one to three mutations, plausible or degenerate:
+// drive (the default or a test drive) with one to three changes. Four in ten are plausible (a
+// sprocket moved by up to 3 mm, a guide by up to 1 mm, a positive number such as an inertia, a
+// stiffness or a force scaled by 1/2 to 2: most still close and run), the rest degenerate:
 // a number made NaN, infinite, zero, negative, tiny or huge (NaN and infinity as the JSON text a
 // hand or another tool writes: NaN, Infinity, 1e999); a sprocket moved onto another (overlapping),
 // mirrored across the crankshaft's line to another sprocket (the chain would wrap it from outside)

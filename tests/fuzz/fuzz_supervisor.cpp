@@ -257,7 +257,7 @@ void warmStepProbes(const FuzzPaths& paths) {
 
 std::vector<FuzzFailure> Supervisor::run() {
   warmSpanCalibration(paths_);
-  warmStepProbes(paths_);
+  if (!paths_.drivePlanOnly) warmStepProbes(paths_);  // (the drive plan gives its step: no probe)
   std::uint64_t next = 0;
   while (next < o_.count && failures_.size() < o_.maxFailures)
     next = runBatch(next, std::min(o_.count, next + std::max<std::uint64_t>(o_.batch, 1)));

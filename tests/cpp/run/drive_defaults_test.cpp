@@ -159,6 +159,15 @@ TEST(DriveDefaults, TheTestDrivesStepsCheckedOnTheirDynamics) {
   }
   EXPECT_GT(realtime[2], 28);
   EXPECT_GT(realtime[3], realtime[2]);
+  // the default drive with the spring-damper tensioner: another drive, probed too (and so cached
+  // for the FMI call fuzz's sequences on its FMU, tests/fuzz/fuzz_supervisor.cpp)
+  const Model springDamper =
+      assemble(loadDriveDescription(std::string(CHAINDRIVE_SOURCE_DIR) + "/tests/data/drives/default_drive_spring_damper.json"));
+  for (const SolverDefaults* table : {&linkRow(), &plainRow()}) {
+    const DriveRow r = driveRow(springDamper, *table);
+    ASSERT_TRUE(r.probe.has_value());
+    EXPECT_TRUE(r.probe->passed) << r.reason;
+  }
 }
 
 // A step given is the step; a method named without one takes its row's, the drive's (plain
@@ -192,4 +201,22 @@ TEST(DriveDefaults, StepAdvice) {
   EXPECT_TRUE(contains(within, "the step was 3.571 us, not above this drive's estimated stable step (1e-4/28 for "
                                "fixed-verlet-implicit-joint-damping)")) << within;
   EXPECT_TRUE(contains(within, "try a shorter one, solver.step = 2.857e-06 s (1e-4/35)")) << within;
+}
+
+// A description no run can take (a link of 1e-300 kg: its modes' step near 1e-150 s) is named, not
+// turned into an overflowing division or a probe of endless steps; divisionsWithin saturates.
+TEST(DriveDefaults, AStepNoRunCanTakeIsNamed) {
+  EXPECT_EQ(divisionsWithin(1e-4, 1e-300), kNoDivision);
+  EXPECT_EQ(divisionsWithin(1e-4, std::nan("")), kNoDivision);
+  EXPECT_EQ(divisionsWithin(1e-4, 1e-4 / 28), 28);
+  const Model m = assemble(modifiedDefault([](nlohmann::json& j) { j["chain"]["linkMass"] = 1e-300; }));
+  for (const SolverDefaults* table : {&linkRow(), &plainRow()}) {
+    try {
+      driveRow(m, *table);
+      ADD_FAILURE() << "a step was chosen";
+    } catch (const DescriptionError& e) {
+      EXPECT_TRUE(contains(e.what(), "the link model's estimated stable step")) << e.what();
+      EXPECT_TRUE(contains(e.what(), "no run can take it")) << e.what();
+    }
+  }
 }
