@@ -203,7 +203,8 @@ bool ChainDriveModel::resolveElements(const Model& m) {
   return true;
 }
 
-// The solver parameters as the simulation takes them.
+// The solver parameters as the simulation takes them; the fixed step the table's for the method
+// (startSimulation sets the drive's own, solverStep: the drive's may take probe runs).
 SimulationOptions ChainDriveModel::simulationOptions() const {
   SimulationOptions opt;
   opt.fidelity = choices_.fidelity;
@@ -215,9 +216,7 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
       model_ ? ownTableRow(*model_, opt) : solverDefaults(Scene::TimingDrive, opt.fidelity);
   opt.integrator.method = choices_.method.value_or(own.method);
   opt.integrator.adaptive.rtol = params_.tolerance;
-  opt.integrator.fixed.step = params_.step > 0.0 ? params_.step
-                              : model_          ? defaultStepChoice(*model_, opt, opt.integrator.method).step
-                                                : defaultStep(own, opt.integrator.method);
+  opt.integrator.fixed.step = params_.step > 0.0 ? params_.step : defaultStep(own, opt.integrator.method);
   opt.integrator.newmark.gamma = params_.newmarkGamma;
   opt.integrator.adaptive.stopAtOutputs = true;
   opt.jointModel = choices_.joints;
@@ -229,15 +228,15 @@ SimulationOptions ChainDriveModel::simulationOptions() const {
 
 // The simulation of model_ with the solver parameters, at its start state on the time grid.
 void ChainDriveModel::startSimulation() {
-  const SimulationOptions opt = simulationOptions();
+  SimulationOptions opt = simulationOptions();
+  // the step, once, and why (solver.step 0: the drive's own, run/drive_defaults.h)
+  const StepChoice step = defaultStepChoice(*model_, opt, opt.integrator.method,
+                                            params_.step > 0.0 ? std::optional<double>(params_.step) : std::nullopt);
+  opt.integrator.fixed.step = step.step;
   makeSimulation(opt);
   if (const span::SpanModel* sm = sim_->spanModel()) logCalibration(host_, *sm);
-  // the step and why (solver.step 0: the drive's own, run/drive_defaults.h)
   if (sim_->integratorFixedStep() > 0.0)
-    host_.log(fmi2OK, "logEvents", "solver: %s, %s", choiceName(opt.integrator.method),
-              defaultStepChoice(*model_, opt, opt.integrator.method,
-                                params_.step > 0.0 ? std::optional<double>(params_.step) : std::nullopt)
-                  .reason.c_str());
+    host_.log(fmi2OK, "logEvents", "solver: %s, %s", choiceName(opt.integrator.method), step.reason.c_str());
   sim_->start(host_.time());
   // what the start state solve found
   const PreloadReport& rep = sim_->preloadReport();

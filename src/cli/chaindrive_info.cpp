@@ -206,16 +206,6 @@ void printCalibration(const Model& m, const std::string& out) {
   std::printf("calibration: this call took %.2f s CPU (%s)\n", cpu, fromCache ? "read from the cache" : "identified");
 }
 
-// The probe of a link row (run/step_probe.h): whether a rung passed, and each run's division of
-// kStepInterval with its energy balance or its failure.
-nlohmann::json probeJson(const ProbedStep& p) {
-  nlohmann::json runs = nlohmann::json::array();
-  for (const ProbeRun& r : p.runs)
-    runs.push_back(r.blewUp ? nlohmann::json{{"divisions", r.divisions}, {"failure", r.failure}}
-                            : nlohmann::json{{"divisions", r.divisions}, {"energyBalance", r.energyBalance}});
-  return {{"passed", p.passed}, {"balanceLimit", kProbeBalanceLimit}, {"runs", runs}};
-}
-
 // A row as JSON: method, step_s, tolerance; a timing row with the drive's step adds its division
 // of kStepInterval, the stability estimate [s] and the estimate's division, the default drive's
 // margin, the probe where it ran, and the reason.
@@ -228,7 +218,7 @@ nlohmann::json rowJson(const DriveRow& r) {
     j["margin"] = r.margin;
     j["limitedBy"] = r.limitedBy;
   }
-  if (r.probe) j["probe"] = probeJson(*r.probe);
+  if (r.probe) j["probe"] = probeJson(*r.probe);  // (run/step_probe.h)
   j["reason"] = r.reason;
   return j;
 }

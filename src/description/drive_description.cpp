@@ -531,4 +531,9 @@ std::string_view defaultDriveJson() { return kDefaultDriveJson; }
 
 DriveDescription defaultDriveDescription() { return parseDriveDescription(kDefaultDriveJson); }
 
+bool isDefaultDrive(const DriveDescription& desc) {
+  static const std::string kDefaultText = defaultDriveDescription().canonicalText;  // (immutable once made)
+  return desc.canonicalText == kDefaultText;
+}
+
 }  // namespace chaindrive

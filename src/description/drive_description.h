@@ -162,6 +162,9 @@ DriveDescription parseDriveDescription(std::string_view jsonText);
 DriveDescription loadDriveDescription(const std::string& path);
 /// The default drive (paper Fig. 11), embedded in the library.
 DriveDescription defaultDriveDescription();
+/// Whether `desc` is the default drive's description (by its canonical text; the parameter
+/// overrides applied to it do not make it another drive).
+bool isDefaultDrive(const DriveDescription& desc);
 std::string_view defaultDriveJson();
 
 /// ISO 606 sprocket tooth-form values for z teeth and roller diameter d1 (all SI).

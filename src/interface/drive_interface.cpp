@@ -389,7 +389,7 @@ bool sameIgnoringCase(const std::string& a, const std::string& b) {
 
 // The model identifier and GUID: the default drive's, or the drive's name and content's.
 void identify(const DriveDescription& desc, DriveInterface& di, std::vector<std::string>& problems) {
-  di.defaultDrive = desc.canonicalText == defaultDriveDescription().canonicalText;
+  di.defaultDrive = isDefaultDrive(desc);
   if (di.defaultDrive) {
     di.modelIdentifier = kDefaultModelIdentifier;
     di.guid = kDefaultDriveGuid;

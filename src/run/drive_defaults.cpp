@@ -55,7 +55,6 @@ struct DefaultEstimates {
   double realtimeModes = 0.0, plainModes = 0.0;  // [s] linkModeStep, joints' damping implicit, explicit
   double realtimeJointDampingRatio = 0.0;        // linkModeStep's, joints' damping implicit
   double span = 0.0;                             // [s] spanModeStep
-  std::string canonicalText;                     // the default drive's description
 };
 const DefaultEstimates& defaultEstimates() {
   static const DefaultEstimates e = [] {
@@ -66,7 +65,6 @@ const DefaultEstimates& defaultEstimates() {
     d.realtimeJointDampingRatio = realtime.jointDampingRatio;
     d.plainModes = linkModeStep(m, true).step;
     d.span = span::spanModeStep(span::assembleSpanModel(m, false)).step;
-    d.canonicalText = m.description.canonicalText;
     return d;
   }();
   return e;
@@ -111,7 +109,7 @@ void spanEstimate(const Model& m, DriveRow& r) {
 // (its steps are its measured closed-loop ones, whatever its tensioner's parameters), not a drive
 // with rigid contacts (the probe runs compliant ones). Returns the reason's clause.
 std::string probeLinkRow(const Model& m, DriveRow& r) {
-  if (m.description.canonicalText == defaultEstimates().canonicalText) return "";
+  if (isDefaultDrive(m.description)) return "";
   if (m.description.contact.method != ContactMethod::Compliant)
     return "; not checked on the drive's dynamics (its contacts are rigid; the probe runs compliant ones)";
   if (r.divisions > kProbeMostDivisions)

@@ -302,7 +302,7 @@ double Simulation::advanceTo(double t) {
     } catch (const IntegrationError& e) {
       const FailureKind kind = e.failureKind();
       const double step = integrator_->fixedStep();
-      if (!(step > 0.0) || options_.stepName.empty() ||
+      if (!(step > 0.0) || !options_.blowUpAdvice ||
           (kind != FailureKind::BlowUp && kind != FailureKind::Tunnelling && kind != FailureKind::NonFinite))
         throw;
       throw IntegrationError(e.time(), kind, e.reason() + "; " + blowUpAdvice(step));

@@ -35,7 +35,8 @@ struct SimulationOptions {
   HealthLimits health;              // blow-up and tunnelling detection
   int monitoredLink = -1;           // -1: the model's
   std::string stepName = "solver.step";  // the fixed step's setting as a blow-up's advice names it
-                                         // ("": no advice, the step probe's own runs: run/step_probe.h)
+  bool blowUpAdvice = true;         // a blow-up's failure offers a stable step (false: the step
+                                    // probe's own runs, run/step_probe.h, whose advice would probe)
   std::string spanCalibrationFile;  // span fidelity: a read-only calibration looked in before the
                                     // cache (an FMU's resources/span_calibration.json; taken when its
                                     // key is the drive's: span/calibration_cache.h); "": none

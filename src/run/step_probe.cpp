@@ -44,14 +44,6 @@ std::string cacheFile(const Model& m, IntegratorMethod method, long long fromDiv
          ".json";
 }
 
-json toJson(const ProbedStep& p) {
-  json runs = json::array();
-  for (const ProbeRun& r : p.runs)
-    runs.push_back({{"divisions", r.divisions}, {"blewUp", r.blewUp}, {"energyBalance", r.energyBalance},
-                    {"failure", r.failure}});
-  return {{"format", kCacheFormat}, {"divisions", p.divisions}, {"passed", p.passed}, {"runs", runs}};
-}
-
 // The cached ladder, if the file holds one (a damaged or foreign file: none, probed afresh).
 bool readCached(const std::string& file, ProbedStep& p) {
   std::ifstream in(utf8Path(file), std::ios::binary);
@@ -64,7 +56,6 @@ bool readCached(const std::string& file, ProbedStep& p) {
     c.passed = j.at("passed");
     for (const json& r : j.at("runs"))
       c.runs.push_back({r.at("divisions"), r.at("blewUp"), r.at("energyBalance"), r.at("failure")});
-    c.cached = true;
     p = c;
     return true;
   } catch (const json::exception&) {
@@ -74,6 +65,14 @@ bool readCached(const std::string& file, ProbedStep& p) {
 
 }  // namespace
 
+json probeJson(const ProbedStep& p) {
+  json runs = json::array();
+  for (const ProbeRun& r : p.runs)
+    runs.push_back({{"divisions", r.divisions}, {"blewUp", r.blewUp}, {"energyBalance", r.energyBalance},
+                    {"failure", r.failure}});
+  return {{"divisions", p.divisions}, {"passed", p.passed}, {"balanceLimit", kProbeBalanceLimit}, {"runs", runs}};
+}
+
 bool ProbeRun::passes() const { return !blewUp && std::fabs(energyBalance) <= kProbeBalanceLimit; }
 
 ProbeRun probeRun(const Model& m, IntegratorMethod method, long long divisions) {
@@ -81,7 +80,7 @@ ProbeRun probeRun(const Model& m, IntegratorMethod method, long long divisions) 
   opt.contactMethod = ContactMethod::Compliant;
   opt.integrator.method = method;
   opt.integrator.fixed.step = kStepInterval / static_cast<double>(divisions);
-  opt.stepName.clear();  // (no advice on a blow-up: the advice would probe again)
+  opt.blowUpAdvice = false;  // (the advice would probe again)
   ProbeRun r;
   r.divisions = divisions;
   Simulation sim(std::make_shared<const Model>(m), opt, probeInputs(m));
@@ -110,7 +109,11 @@ ProbedStep probeStep(const Model& m, IntegratorMethod method, long long fromDivi
     p.passed = p.runs.back().passes();
   }
   p.divisions = p.runs.empty() ? fromDivisions : p.runs.back().divisions;  // (the last rung tried)
-  if (!file.empty()) span::writeCacheFile(span::calibrationCacheDir(), file, toJson(p).dump(1) + "\n");
+  if (!file.empty()) {
+    json cached = probeJson(p);
+    cached["format"] = kCacheFormat;
+    span::writeCacheFile(span::calibrationCacheDir(), file, cached.dump(1) + "\n");
+  }
   return p;
 }
 

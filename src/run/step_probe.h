@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "assembly/model.h"
 #include "integrators/ode_system.h"
 
@@ -54,7 +56,6 @@ struct ProbeRun {
 struct ProbedStep {
   long long divisions = 0;
   bool passed = false;
-  bool cached = false;         // read from the cache, not run now
   std::vector<ProbeRun> runs;  // in the order run
 };
 
@@ -63,6 +64,10 @@ ProbeRun probeRun(const Model& m, IntegratorMethod method, long long divisions);
 
 /// The ladder from `fromDivisions` (the estimate's step) up, or its cached outcome.
 ProbedStep probeStep(const Model& m, IntegratorMethod method, long long fromDivisions);
+
+/// The ladder as JSON (the cache's content, chaindrive-info --defaults): divisions, passed, the
+/// balance limit, and per run its divisions, blewUp, energyBalance and failure.
+nlohmann::json probeJson(const ProbedStep& p);
 
 /// "energy balance -2.76 % at 1e-4/56 (1e-4/28 -18.46 %, 1e-4/31 blew up, ...)": the probe in words.
 std::string describeProbe(const ProbedStep& p);
