@@ -14,15 +14,14 @@ reported by `chaindrive-info`.
 """
 import json
 import math
-import os
 import pathlib
-import re
 import subprocess
 import sys
-import tempfile
 
 from .. import paths
 from ..errors import UserError
+from . import geometry as geo
+from .layout_drive import closure_angle
 
 # ---- design values (SI) and their sources -------------------------------------------------
 PITCH = 0.009525          # ISO 606 06B-1 (3/8 in)
@@ -60,19 +59,10 @@ TENS_SD_C_EXT = 300.0
 
 
 def pitch_radius(z):
-    return PITCH / (2.0 * math.sin(math.pi / z))
+    return geo.pitch_radius(PITCH, z)
 
 
-def common_tangent(c1, s1, c2, s2):
-    dx, dy = c2[0] - c1[0], c2[1] - c1[1]
-    d = math.hypot(dx, dy)
-    c = (s1 - s2) / d
-    beta = math.atan2(dy, dx)
-    psi = -math.acos(c)
-    m = (math.cos(beta + psi), math.sin(beta + psi))
-    t1 = (c1[0] + s1 * m[0], c1[1] + s1 * m[1])
-    t2 = (c2[0] + s2 * m[0], c2[1] + s2 * m[1])
-    return t1, t2
+common_tangent = geo.common_tangent
 
 
 def guide_on_span(t1, t2, at, face_r, deflect, outward_sign):
@@ -191,20 +181,6 @@ def spring_damper_variant(drive):
     t.update({"preload": TENS_SD_PRELOAD, "damping": TENS_SD_C, "dampingExtension": TENS_SD_C_EXT})
     variant["name"] = drive["name"] + ", spring-damper tensioner"
     return variant
-
-
-def closure_angle(info, drive):
-    with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
-        json.dump(drive, f, indent=1)
-        path = f.name
-    try:
-        out = subprocess.run([info, "--drive", path], capture_output=True, text=True)
-    finally:
-        os.unlink(path)
-    if out.returncode != 0:
-        return None, out.stderr
-    m = re.search(r"closure: \S+ = (\S+) rad", out.stdout)
-    return float(m.group(1)), out.stdout
 
 
 def add_arguments(ap):

@@ -42,6 +42,7 @@ import pathlib
 
 import numpy as np
 
+from .. import paths
 from . import valvetrain
 from .tables import ANGLE, DATA_DIR, PERIOD_DEG, SPROCKET_ANGLE, SPROCKET_PERIOD_DEG, load, tabulated_speeds
 
@@ -280,7 +281,6 @@ def write_tables(out_dir=None, rpms=DEFAULT_RPMS, seed=DEFAULT_SEED, engine=valv
 def _shown(path):
     """A path as the headers show it: relative to the repository if inside it (so the files do
     not depend on where the repository lies), else absolute."""
-    from .. import paths
     path = pathlib.Path(path).resolve()
     try:
         return path.relative_to(paths.ROOT).as_posix()
@@ -288,9 +288,17 @@ def _shown(path):
         return path.as_posix()
 
 
+def _engine_option(engine):
+    return "" if engine.name == valvetrain.DEFAULT_ENGINE.name else f" --engine {engine.name}"
+
+
 def _drive_option(drives_dir, seed, engine):
-    option = "" if engine.name == valvetrain.DEFAULT_ENGINE.name else f" --engine {engine.name}"
-    return f"generator: python -m harness tables{option} --drive-tables {_shown(drives_dir)} --seed {seed}"
+    return f"generator: python -m harness tables{_engine_option(engine)} --drive-tables {_shown(drives_dir)} --seed {seed}"
+
+
+def _user_drive_option(drive, loads, seed, engine):
+    return (f"generator: python -m harness tables{_engine_option(engine)} --drive {_shown(pathlib.Path(drive))} "
+            + " ".join(f"--sprocket-load {item}" for item in loads) + f" --seed {seed}")
 
 
 def _write_sprocket_torque(path, name, rpm, quantity, provenance, lines, values):
@@ -318,7 +326,7 @@ def _drive_line(drive_path, name, teeth, crank, ratio):
             f"{ratio:.4g} crank degrees per sprocket degree")
 
 
-def _camshaft_table(out, drive_path, elements, name, trains, rpm, seed, engine, torques, drives_dir):
+def _camshaft_table(out, drive_path, elements, name, trains, rpm, seed, engine, torques, generator):
     """torque_<name>_<n>rpm.csv of a camshaft sprocket carrying the valve trains `trains`: one
     train is the shipped crank-angle table's column, every second row (crank angle 2 x camshaft
     angle); several are a single camshaft's sum, measured once (single_camshaft_torque)."""
@@ -343,12 +351,12 @@ def _camshaft_table(out, drive_path, elements, name, trains, rpm, seed, engine, 
         notes = {name + ".tau": (sigma, offset)}
     lines = ["phase: 0 deg", _sprocket_sampling(ratio, "camshaft"), _drive_line(drive_path, name, teeth,
              elements.crank_teeth, ratio), source] + _common_notes(seed, engine)[1:2] + \
-        [_drive_option(drives_dir, seed, engine), _torque_artefacts(notes)]
+        [generator, _torque_artefacts(notes)]
     return _write_sprocket_torque(out / f"torque_{name}_{rpm:g}rpm.csv", name, rpm, "camshaft load torque",
                                   PROVENANCE_TORQUE, lines, values)
 
 
-def _pump_table(out, drive_path, elements, name, rpm, seed, drives_dir, engine, pump=valvetrain.HP_PUMP):
+def _pump_table(out, drive_path, elements, name, rpm, seed, generator, engine, pump=valvetrain.HP_PUMP):
     """torque_<name>_<n>rpm.csv of the high-pressure pump (pump_torque)."""
     ratio = elements.ratio(name)
     teeth = next(s.teeth for s in elements.free if s.name == name)
@@ -364,7 +372,7 @@ def _pump_table(out, drive_path, elements, name, rpm, seed, drives_dir, engine, 
         f"rail pressure {p / 1e5:g} bar at full delivery, efficiency {pump.efficiency:g}, drag {pump.drag:g} N.m: "
         f"mean {pump.mean(rpm):.3f} N.m, pulse peak {pump.peak(rpm):.3f} N.m above the drag; model in "
         "harness/tables/valvetrain.py (HighPressurePump) and tests/drives/tables/README.md",
-        _drive_option(drives_dir, seed, engine),
+        generator,
         f"artefacts: average of {CYCLES} pump turns with {100 * PUMP_DELIVERY_COV:g} % turn-to-turn variation of "
         f"the delivery, per-turn sensor noise {sigma:.3f} N.m RMS; first-order low-pass {TORQUE_BANDWIDTH_HZ:g} Hz; "
         f"offset {offset:+.3f} N.m; quantized to {TORQUE_STEP:g} N.m",
@@ -380,11 +388,9 @@ def write_drive_tables(drives_dir, out_dir=None, rpms=DRIVE_RPMS, seed=DEFAULT_S
     engine speed the engine's crankshaft_speed_<n>rpm.csv (the shipped file) and each loaded
     sprocket's load as DRIVE_LOADS gives it. The drive's loaded sprockets must be those
     DRIVE_LOADS names. Returns the paths written."""
-    from ..drive.description import elements as drive_elements
     drives_dir = pathlib.Path(drives_dir)
     out_dir = pathlib.Path(out_dir) if out_dir is not None else drives_dir / "tables"
-    written = []
-    cache = {}
+    written, cache = [], {}
     for drive in (drives if drives is not None else sorted(DRIVE_LOADS)):
         if drive not in DRIVE_LOADS:
             raise ValueError(f"no loads known for the drive '{drive}'; make_tables.DRIVE_LOADS has "
@@ -392,27 +398,64 @@ def write_drive_tables(drives_dir, out_dir=None, rpms=DRIVE_RPMS, seed=DEFAULT_S
         path = drives_dir / f"{drive}.json"
         if not path.is_file():
             raise ValueError(f"--drive-tables {drives_dir}: no {path.name} there (make_tables.DRIVE_LOADS names it)")
-        el = drive_elements(path)
-        spec = DRIVE_LOADS[drive]
-        if sorted(el.loaded) != sorted(spec):
-            raise ValueError(f"{path}: its loaded sprockets {', '.join(el.loaded) or 'none'} are not those "
-                             f"make_tables.DRIVE_LOADS loads ({', '.join(spec)})")
-        out = out_dir / drive
-        out.mkdir(parents=True, exist_ok=True)
-        for rpm in rpms:
-            if rpm not in cache:
-                cache[rpm] = (camshaft_torques(rpm, seed, engine), crankshaft_speed(rpm, seed, engine))
-            torques, speed = cache[rpm]
-            written.append(_write_crankshaft_speed(out, rpm, seed, engine, speed))
-            if CRANK_TABLE in spec.values():
-                written.append(_write_camshaft_torque(out, rpm, seed, engine, torques))
-            for name in el.loaded:
-                load = spec[name]
-                if load == PUMP:
-                    written.append(_pump_table(out, path, el, name, rpm, seed, drives_dir, engine))
-                elif load != CRANK_TABLE:
-                    written.append(_camshaft_table(out, path, el, name, load, rpm, seed, engine, torques, drives_dir))
+        written += write_sprocket_tables(path, DRIVE_LOADS[drive], out_dir / drive, rpms, seed, engine,
+                                         _drive_option(drives_dir, seed, engine), cache)
     return written
+
+
+def write_sprocket_tables(path, spec, out, rpms, seed, engine, generator, cache=None):
+    """The tables folder `out` of the drive `path` whose loaded sprockets carry the loads `spec`
+    ({sprocket: a tuple of the engine's camshafts, CRANK_TABLE or PUMP}): at each engine speed the
+    engine's crankshaft speed and each sprocket's load; `generator` is the command line the files
+    name. Returns the paths written."""
+    from ..drive.description import elements as drive_elements
+    el = drive_elements(path)
+    if sorted(el.loaded) != sorted(spec):
+        raise ValueError(f"{path}: its loaded sprockets {', '.join(el.loaded) or 'none'} are not those the tables "
+                         f"load ({', '.join(spec)})")
+    out = pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    cache = {} if cache is None else cache
+    written = []
+    for rpm in rpms:
+        if rpm not in cache:
+            cache[rpm] = (camshaft_torques(rpm, seed, engine), crankshaft_speed(rpm, seed, engine))
+        torques, speed = cache[rpm]
+        written.append(_write_crankshaft_speed(out, rpm, seed, engine, speed))
+        if CRANK_TABLE in spec.values():
+            written.append(_write_camshaft_torque(out, rpm, seed, engine, torques))
+        for name in el.loaded:
+            load = spec[name]
+            if load == PUMP:
+                written.append(_pump_table(out, path, el, name, rpm, seed, generator, engine))
+            elif load != CRANK_TABLE:
+                written.append(_camshaft_table(out, path, el, name, load, rpm, seed, engine, torques, generator))
+    return written
+
+
+# --sprocket-load NAME=KIND: what a user's sprocket carries
+LOAD_KINDS = {"intake": ("camshaftIntake",), "exhaust": ("camshaftExhaust",),
+              "intake+exhaust": ("camshaftIntake", "camshaftExhaust"), "pump": PUMP}
+
+
+def sprocket_loads_option(values, drive):
+    """{sprocket: load} of --sprocket-load NAME=KIND ...; every loaded sprocket of the drive once."""
+    from ..drive.description import elements as drive_elements
+    loaded = drive_elements(drive).loaded
+    spec = {}
+    for item in values or []:
+        name, _, kind = item.partition("=")
+        if name not in loaded:
+            raise ValueError(f"--sprocket-load {item}: '{name}' is not a loaded sprocket of {drive} "
+                             f"({', '.join(loaded) or 'none'})")
+        if kind not in LOAD_KINDS:
+            raise ValueError(f"--sprocket-load {item}: '{kind}' is not one of {', '.join(LOAD_KINDS)}")
+        spec[name] = LOAD_KINDS[kind]
+    missing = [n for n in loaded if n not in spec]
+    if missing:
+        raise ValueError(f"--sprocket-load: no load for {', '.join(missing)} (give NAME=KIND for every loaded "
+                         f"sprocket of {drive}: {', '.join(loaded)}; KIND one of {', '.join(LOAD_KINDS)})")
+    return spec
 
 
 def pump_summary(rpms=DRIVE_RPMS, pump=valvetrain.HP_PUMP):
@@ -490,12 +533,38 @@ def add_arguments(ap):
                     help="write the test drives' tables instead: a folder per drive DRIVES/<drive>.json that "
                          f"make_tables.DRIVE_LOADS knows ({', '.join(sorted(DRIVE_LOADS))}), DRIVES/tables/<drive>/ "
                          "(or OUT/<drive>/), e.g. --drive-tables tests/drives")
+    ap.add_argument("--drive", help="write the tables of this drive's loaded sprockets instead (into --out, default "
+                    "results/tables/<drive>/), each carrying the load --sprocket-load gives it")
+    ap.add_argument("--sprocket-load", action="append", metavar="NAME=KIND",
+                    help=f"with --drive: the load of the loaded sprocket NAME, KIND one of {', '.join(LOAD_KINDS)} "
+                         "(a camshaft driving the engine's intake valves, its exhaust valves or both; the "
+                         "high-pressure pump); once per loaded sprocket")
     ap.add_argument("--seed", type=int, default=DEFAULT_SEED, help=f"random seed (default {DEFAULT_SEED})")
     ap.add_argument("--quiet", action="store_true", help="do not print the summary")
 
 
+def run_drive(args, engine):
+    """--drive FILE --sprocket-load NAME=KIND ...: the tables of a user's drive."""
+    from ..errors import UserError
+    rpms = args.rpm or list(DRIVE_RPMS)
+    out = pathlib.Path(args.out or paths.RESULTS / "tables" / pathlib.Path(args.drive).stem)
+    try:
+        spec = sprocket_loads_option(args.sprocket_load, args.drive)
+        written = write_sprocket_tables(args.drive, spec, out, rpms, args.seed, engine,
+                                        _user_drive_option(args.drive, args.sprocket_load, args.seed, engine))
+    except ValueError as e:
+        raise UserError(str(e)) from None
+    if not args.quiet:
+        for p in written:
+            print(p)
+    print(f"written: {len(written)} tables into {out} (run the drive with --drive {args.drive} --tables {out})")
+    return 0
+
+
 def run(args):
     engine = valvetrain.ENGINES[args.engine]
+    if args.drive:
+        return run_drive(args, engine)
     if args.drive_tables:
         rpms = args.rpm or list(DRIVE_RPMS)
         try:

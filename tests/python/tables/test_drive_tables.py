@@ -176,3 +176,28 @@ def test_the_pump_table_has_its_designed_mean_and_two_pulses_per_turn(rpm):
     # between the pulses (filling stroke) only the drag is left
     between = (t.x > 110.0) & (t.x < 170.0) | (t.x > 290.0) & (t.x < 350.0)
     assert abs(np.mean(y[between]) - pump.drag - offset) < 0.25
+
+
+def test_a_users_drive_gets_tables_by_sprocket_and_kind(tmp_path):
+    """tables --drive FILE --sprocket-load NAME=KIND: a user's drive gets the same loads the test
+    drives' generator gives (the diesel pump's table's rows are the committed ones, only the
+    generator line differs); a sprocket left without a kind, or one the drive does not load, is
+    one line naming the drive's loaded sprockets."""
+    from harness_cli import harness, one_error_line
+    drive = paths.ROOT / "tests" / "drives" / "diesel_pump.json"
+    status, out, err = harness("tables", "--drive", str(drive), "--sprocket-load", "hpPump=pump", "--sprocket-load",
+                               "camshaftIntake=intake", "--sprocket-load", "camshaftExhaust=exhaust", "--rpm", "3000",
+                               "--out", str(tmp_path), "--quiet")
+    assert status == 0, err
+    mine = (tmp_path / "torque_hpPump_3000rpm.csv").read_text().splitlines()
+    committed = (paths.ROOT / "tests" / "drives" / "tables" / "diesel_pump" / "torque_hpPump_3000rpm.csv").read_text()
+    committed = committed.splitlines()
+    assert [l for l in mine if not l.startswith("# generator")] == [l for l in committed if not l.startswith("# generator")]
+    assert any("--sprocket-load hpPump=pump" in l for l in mine)
+    assert (tmp_path / "torque_camshaftIntake_3000rpm.csv").exists()
+    line = one_error_line(*harness("tables", "--drive", str(drive), "--sprocket-load", "hpPump=pump",
+                                   "--out", str(tmp_path))[::2])
+    assert "no load for camshaftIntake, camshaftExhaust" in line and "intake+exhaust" in line, line
+    line = one_error_line(*harness("tables", "--drive", str(paths.ROOT / "tests" / "drives" / "idler.json"),
+                                   "--sprocket-load", "idler=pump", "--out", str(tmp_path))[::2])
+    assert "'idler' is not a loaded sprocket" in line and "(camshaft)" in line, line
