@@ -19,6 +19,7 @@
     python -m harness design-drive   the default drive (harness/drive/design.py)
     python -m harness picture        picture of a drive (harness/plots/drive_picture.py)
     python -m harness layout         a drive from centres, teeth and guides (harness/drive/layout.py)
+    python -m harness example-drives the example drives and their physics checks (harness/study/example_drives.py)
     python -m harness rig            the hydraulic tensioner's force-displacement loops on the bench (harness/rig/rig.py)
     python -m harness package        the FMUs for download: linux64, win64, sources (harness/package/package.py)
     python -m harness export         the FMU of a drive, its interface generated from it (harness/fmu/export.py)
@@ -75,6 +76,8 @@ COMMANDS = {
     "tables": ("harness.tables.make_tables", "generate the SYNTHESIZED camshaft-torque and crankshaft-speed tables"),
     "design-drive": ("harness.drive.design", "design the default drive (src/drives/default_drive.json)"),
     "picture": ("harness.plots.drive_picture", "picture of a drive at its assembled initial pose"),
+    "example-drives": ("harness.study.example_drives", "the example drives: made by the layout aid, their FMU "
+                       "interfaces, pictures, main jobs and physics checks (docs/examples/)"),
     "layout": ("harness.drive.layout", "a drive from centres, teeth, a chain designation and guides on the spans: "
                "link count, closure, wraps, tensioner margins, picture"),
     "rig": ("harness.rig.rig", "the hydraulic tensioner's force-displacement loops on the bench (chaindrive-rig) at "
