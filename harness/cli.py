@@ -20,6 +20,7 @@
     python -m harness picture        picture of a drive (harness/plots/drive_picture.py)
     python -m harness layout         a drive from centres, teeth and guides (harness/drive/layout.py)
     python -m harness example-drives the example drives and their physics checks (harness/study/example_drives.py)
+    python -m harness v-engine       V-engine chains coupled through their shafts (harness/vengine.py)
     python -m harness rig            the hydraulic tensioner's force-displacement loops on the bench (harness/rig/rig.py)
     python -m harness package        the FMUs for download: linux64, win64, sources (harness/package/package.py)
     python -m harness export         the FMU of a drive, its interface generated from it (harness/fmu/export.py)
@@ -78,6 +79,8 @@ COMMANDS = {
     "picture": ("harness.plots.drive_picture", "picture of a drive at its assembled initial pose"),
     "example-drives": ("harness.study.example_drives", "the example drives: made by the layout aid, their FMU "
                        "interfaces, pictures, main jobs and physics checks (docs/examples/)"),
+    "v-engine": ("harness.vengine", "a V6's primary and bank chains, three FMUs coupled through their shafts: "
+                 "balances, drift and statistics over the communication step"),
     "layout": ("harness.drive.layout", "a drive from centres, teeth, a chain designation and guides on the spans: "
                "link count, closure, wraps, tensioner margins, picture"),
     "rig": ("harness.rig.rig", "the hydraulic tensioner's force-displacement loops on the bench (chaindrive-rig) at "

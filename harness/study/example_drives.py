@@ -15,8 +15,8 @@ picture, and — where it runs on its own — its main job with its own tables a
 
     python -m harness example-drives [--rpm 3000] [--cycles 120] [--only NAME ...] [--out docs/examples]
 
-The V6's primary and bank drives run only coupled through their intermediate shafts; they get
-the layout, the interface and the picture.
+The V6's primary and bank drives run coupled through their intermediate shafts (harness/vengine.py,
+docs/v_engine.md); here they get the layout, the interface and the picture.
 """
 import dataclasses
 import json
@@ -32,8 +32,6 @@ import numpy as np
 from .. import cycle_stats, paths
 from ..drive import geometry as geo
 from ..drive.description import drive_json, elements
-from ..drive.layout import close
-from ..drive.layout_file import read_layout
 from ..errors import UserError
 
 DRIVES = paths.ROOT / "tests" / "drives"
@@ -70,14 +68,22 @@ EXAMPLES = [
 ]
 
 
-def layout_matches(example):
-    """Whether the layout aid makes the committed drive from the example's layout file, bit for bit."""
-    spec = read_layout(DRIVES / "layouts" / f"{example.name}.json")
-    committed = drive_json(example.drive)
-    layout, angle, message = close(str(paths.executable("chaindrive-info")), spec, committed["chain"]["numberOfLinks"])
-    if angle is None:
-        raise UserError(f"{example.name}: its layout does not close: {message}")
-    return layout.drive(committed["chain"]["numberOfLinks"]) == committed
+def layout_report(example, out):
+    """The layout aid on the example's layout file (python -m harness layout): its report kept as
+    out/layout.md; returns whether it makes the committed drive bit for bit."""
+    with tempfile.TemporaryDirectory() as scratch:
+        drive = pathlib.Path(scratch) / f"{example.name}.json"
+        layout = (DRIVES / "layouts" / f"{example.name}.json").relative_to(paths.ROOT).as_posix()
+        cmd = [sys.executable, "-m", "harness", "layout", layout, "--out", str(drive), "--picture",
+               str(pathlib.Path(scratch) / "drive.png")]
+        done = subprocess.run(cmd, capture_output=True, text=True, cwd=paths.ROOT)
+        if done.returncode != 0:
+            raise UserError(f"{example.name}: the layout aid failed: {done.stderr.strip()}")
+        report = done.stdout.replace(str(drive), f"tests/drives/{example.name}.json")
+        report = report.replace(str(pathlib.Path(scratch) / "drive.png"), "drive.png")
+        (out / "layout.md").write_text(f"# The layout aid on {example.name}\n\n`python -m harness layout "
+                                       f"tests/drives/layouts/{example.name}.json`:\n\n```\n{report}```\n")
+        return drive.read_bytes() == example.drive.read_bytes()
 
 
 def model_description(example, out):
@@ -160,7 +166,7 @@ def run_example(example, rpm, cycles, out_root):
     from ..plots.drive_picture import drive_picture
     out = out_root / example.name
     out.mkdir(parents=True, exist_ok=True)
-    row = {"name": example.name, "what": example.what, "layoutMatches": layout_matches(example),
+    row = {"name": example.name, "what": example.what, "layoutMatches": layout_report(example, out),
            "interface": model_description(example, out)}
     drive = drive_json(example.drive)
     row["links"] = drive["chain"]["numberOfLinks"]
@@ -183,34 +189,42 @@ def report_line(row):
                         f"{v['chainTorqueError']:+.2%})"
                         for k, v in c["torqueBalance"].items())
     m = c["meshingOrder"]
-    return (text + f"; pull/chain torque/load {torques}; order {m['order']:g} {m['amplitude_N']:.1f} N, {m['ratio']:.1f} x its "
-            f"neighbours; energy balance {c['energyBalanceError']:+.2%}; {'passed' if c['passed'] else 'FAILED'}")
+    return (text + f"; pull/chain torque/load {torques}; order {m['order']:g} {m['amplitude_N']:.1f} N, "
+            f"{m['ratio']:.1f} x its neighbours; energy balance {c['energyBalanceError']:+.2%}; "
+            f"{'passed' if c['passed'] else 'FAILED'}")
+
+
+README_INTRO = """# Example drives
+
+Real engine layouts as the project models them, each made by the layout aid from its layout file
+([drive_layout.md](../drive_layout.md); the drives, their layout files and tables in
+[tests/drives](../../tests/drives/README.md) with the sources of their numbers). Per example: its
+FMU's model description (`modelDescription.xml`, as `./run.sh export` writes it), its picture, the
+layout aid's report (`layout.md`), and where it runs on its own the main job at {rpm:g} rpm with its
+own tables, {cycles} counted cycles (`run.json`, `summary.json`) and the physics checks
+(`checks.json`): the chain's pull across each loaded sprocket (the span forces after and before it
+times its pitch radius) against its mean load within {pull:.0%} (the pull also carries the losses
+of the chain's wrap on the sprocket, which the outputs do not separate) and the mean chain torque
+on it (output `tauChain`) within {chain:.0%} of the load; the crankshaft meshing order at least
+{prominence:g} times the median of the half orders within {near:g} of it in the slack span's force;
+the energy balance within the main job's limit. Made by
+`python -m harness example-drives --rpm {rpm:g} --cycles {cycles}` (harness/study/example_drives.py).
+
+| example | links | layout aid | inputs | loaded sprocket: pull / chain torque / load | meshing order | energy balance | checks |
+|---|---|---|---|---|---|---|---|"""
 
 
 def readme(rows, rpm, cycles):
     """docs/examples/README.md: the examples, their interfaces and their checks."""
-    lines = ["# Example drives", "",
-             "Real engine layouts as the project models them, each made by the layout aid from its layout file",
-             "([drive_layout.md](../drive_layout.md); the drives, their layout files and tables in",
-             "[tests/drives](../../tests/drives/README.md) with the sources of their numbers). Per example: its FMU's",
-             "model description (`modelDescription.xml`, as `./run.sh export` writes it), its picture, and where it runs on",
-             f"its own the main job at {rpm:g} rpm with its own tables, {cycles} counted cycles (`run.json`, `summary.json`)",
-             "and the physics checks (`checks.json`): the chain's pull across each loaded sprocket (the span forces after",
-             f"and before it times its pitch radius) against its mean load within {TORQUE_BALANCE_LIMIT:.0%} (the pull also",
-             "carries the losses of the chain's wrap on the sprocket, which the outputs do not separate) and the mean chain torque on it (output `tauChain`) within",
-             f"{CHAIN_TORQUE_LIMIT:.0%} of the load; the crankshaft meshing order at least {MESHING_PROMINENCE:g} times the",
-             f"median of the half orders within {NEIGHBOURHOOD:g} of it",
-             "in the slack span's force; the energy balance within the main job's limit. Made by",
-             f"`python -m harness example-drives --rpm {rpm:g} --cycles {cycles}` (harness/study/example_drives.py).", "",
-             "| example | links | layout aid | inputs | loaded sprocket: pull / chain torque / load | meshing order | energy balance | checks |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = README_INTRO.format(rpm=rpm, cycles=cycles, pull=TORQUE_BALANCE_LIMIT, chain=CHAIN_TORQUE_LIMIT,
+                                prominence=MESHING_PROMINENCE, near=NEIGHBOURHOOD).splitlines()
     for r in rows:
         c = r.get("checks")
         inputs = ", ".join(f"`{n}`" for n in r["interface"]["input"])
         link = f"[{r['name']}]({r['name']}/drive.png): {r['what']}"
         if not c:
             lines.append(f"| {link} | {r['links']} | {'bit for bit' if r['layoutMatches'] else 'differs'} | {inputs} | "
-                         "runs only coupled through its shafts | | | |")
+                         "runs coupled through its shafts: [v_engine.md](../v_engine.md) | | | |")
             continue
         torques = "; ".join(f"`{k}` {v['pull_Nm']:.2f} / {v['chainTorque_Nm']:.2f} / {v['load_Nm']:.2f} N m "
                             f"({v['error']:+.1%}, {v['chainTorqueError']:+.1%})"
@@ -228,7 +242,8 @@ def committed_rows(out):
     rows = []
     for e in EXAMPLES:
         root = ET.parse(out / e.name / "modelDescription.xml").getroot()
-        row = {"name": e.name, "what": e.what, "layoutMatches": True, "links": drive_json(e.drive)["chain"]["numberOfLinks"],
+        links = drive_json(e.drive)["chain"]["numberOfLinks"]
+        row = {"name": e.name, "what": e.what, "layoutMatches": True, "links": links,
                "interface": {c: [v.get("name") for v in root.iter("ScalarVariable") if v.get("causality") == c]
                              for c in ("input", "output")}}
         if (out / e.name / "checks.json").exists():

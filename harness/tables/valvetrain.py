@@ -289,14 +289,15 @@ class CrankSpeedModel:
     idle_rpm: float = 800.0
     idle_amplitude_deg: float = 2.7        # [P]/[D] order-2 angle amplitude at idle (710-860 rpm swing)
     pulse_centre_deg: float = 50.0         # [E] theta_p: gas-torque pulse centre after firing TDC
-    max_order: int = 40                    # even orders 2..40
+    max_order: int = 40                    # firing orders base_order, 2 base_order, ... up to 40
+    base_order: int = 2                    # the firing order: cylinders / 2 of a four-stroke (I4: 2, V6: 3)
     resonance_hz: float = 400.0            # [E] first crank torsional mode (300-500 Hz)
     resonance_damping: float = 0.03        # [E] damping ratio (crank with rubber damper, 0.02-0.05)
     # [E] cylinder imbalance: (order, angle amplitude relative to A_2, phase [deg])
     imbalance: tuple = ((0.5, 0.08, 30.0), (1.0, 0.02, 120.0), (1.5, 0.009, 250.0))
 
     def order2_amplitude_deg(self, rpm):
-        """Rigid-body order-2 angle amplitude A_2(n) [deg]."""
+        """Rigid-body angle amplitude A_2(n) [deg] of the firing order (base_order: order 2 of an I4)."""
         return self.idle_amplitude_deg * (self.idle_rpm / rpm) ** 2
 
     def amplification(self, order, rpm):
@@ -308,8 +309,9 @@ class CrankSpeedModel:
         """Complex angle amplitudes [rad] per engine order: delta = sum Re{c_k exp(i k theta)}."""
         a2 = self.order2_amplitude_deg(rpm) * DEG
         out = {}
-        for k in range(2, self.max_order + 1, 2):
-            out[float(k)] = -a2 * (2.0 / k) ** 3 * self.amplification(k, rpm) \
+        b = self.base_order
+        for k in range(b, self.max_order + 1, b):
+            out[float(k)] = -a2 * (float(b) / k) ** 3 * self.amplification(k, rpm) \
                 * np.exp(-1j * k * self.pulse_centre_deg * DEG)
         for k, rel, ph in self.imbalance:
             out[float(k)] = rel * a2 * self.amplification(k, rpm) * np.exp(1j * ph * DEG)

@@ -151,3 +151,18 @@ def test_the_catalogue_says_where_each_number_comes_from():
         assert {"pitch", "linkMass", "linkInertia", "joint.stiffness"} <= set(chain.sources)
         assert chain.sources["joint.stiffness"].startswith("estimated")
     assert math.isclose(CHAINS["08B-1"].pitch, 0.0127)
+
+
+def test_the_pages_sketch_is_the_committed_layout_and_closes(tmp_path):
+    """docs/model_your_drive.md's layout file is docs/model_your_drive/my_dohc.json, and the layout
+    aid closes it with the link count and shift its committed report quotes."""
+    page = (paths.ROOT / "docs" / "model_your_drive.md").read_text()
+    block = page.split("```json\n", 1)[1].split("```", 1)[0]
+    committed = paths.ROOT / "docs" / "model_your_drive" / "my_dohc.json"
+    assert json.loads(block) == json.loads(committed.read_text())
+    status, stdout, stderr = harness("layout", str(committed), "--out", str(tmp_path / "d.json"))
+    assert status == 0, stderr
+    report = (paths.ROOT / "docs" / "model_your_drive" / "layout.md").read_text()
+    for line in stdout.splitlines():
+        if line.startswith(("path at the drawn centres", "closure:", "wraps:")):
+            assert line in report, line

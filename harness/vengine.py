@@ -1,0 +1,320 @@
+"""A V-engine's timing chains coupled by co-simulation (docs/v_engine.md): the V6's primary drive
+(tests/drives/v6_primary.json: crankshaft to two intermediate shafts) and a bank drive per
+cylinder bank (tests/drives/v6_bank.json: the shaft's sprocket to the bank's two camshafts), each
+its own FMU, coupled through the intermediate shafts by an explicit master in fmpy:
+
+- each bank's shaft turns at the primary's shaft speed: bank `shaft.w` = primary `<shaft>.w`;
+- the primary's shaft carries the bank's chain: primary `<shaft>.tau` (a load, positive against
+  the rotation) = - bank `shaft.tau` (the chain's torque on the bank's prescribed sprocket,
+  positive in the running direction: negative while the bank's chain loads it);
+
+both sampled at the start of each communication step and held over it (Jacobi: the three FMUs
+step side by side). The engine: a 60-degree V6, firing order 1-2-3-4-5-6 alternating between the
+banks every 120 deg crank; each bank's camshafts carry the valve-train model's loads of three
+cylinders (the i4-bucket valve trains, SYNTHESIZED), the crankshaft speed the model's with firing
+order 3 (estimates). A bank's statistics key on the engine's crank angle: its camshafts turn at
+half the crankshaft's speed through the two ratios (21/28 x 22/33 = 1/2).
+
+    python -m harness v-engine [--rpm 3000] [--cycles 24] [--run-in 8] [--steps 1e-4 5e-5 2.5e-5] [--out DIR]
+"""
+import dataclasses
+import json
+import math
+import pathlib
+import time
+
+import numpy as np
+
+from . import checks, cycle_stats, paths, runin
+from .errors import UserError
+from .fmu import export, fmu
+from .tables import make_tables, valvetrain
+
+PRIMARY = paths.ROOT / "tests" / "drives" / "v6_primary.json"
+BANK = paths.ROOT / "tests" / "drives" / "v6_bank.json"
+# bank: (its shaft on the primary drive, its firing offset [deg crank] after cylinder 1's firing TDC)
+BANKS = {"left": ("leftShaft", 0.0), "right": ("rightShaft", 120.0)}
+SHAFT_RATIO = 28.0 / 21.0   # crankshaft revolutions per intermediate-shaft revolution
+CAM_RATIO = 2.0             # crankshaft revolutions per camshaft revolution (28/21 x 33/22)
+# solver steps per 0.1 ms: at or below each drive's own (1e-4/35 and 1e-4/31, chaindrive-info
+# --defaults), so that communication steps of 0.1 ms / 2, / 4 and / 8 hold whole solver steps
+SOLVER_DIVISIONS = {"primary": 40, "bank": 32}
+SUPPLY_PRESSURE = 3.0e5     # [Pa] the gallery's oil pressure at every tensioner (the main job's)
+CAMS = ("intakeCam", "exhaustCam")
+RUN_IN_MINIMUM = 8          # engine cycles of run-in at least (the main job's at 3000 rpm)
+
+# [E] a V6's crankshaft: firing order 3 (three firings per revolution), smoother than an I4's
+# order 2 (2.7 deg at idle): 1.2 deg at idle
+V6_CRANK = valvetrain.CrankSpeedModel(base_order=3, idle_amplitude_deg=1.2)
+# a bank: three cylinders firing every 240 deg, the i4-bucket's valve trains and camshaft drag
+BANK_ENGINE = dataclasses.replace(valvetrain.I4_BUCKET, name="v6-bank", firing_order=(1, 2, 3), crank=V6_CRANK,
+                                  description="one bank of a 60-degree V6: 3 cylinders, firing every 240 deg crank")
+
+
+@dataclasses.dataclass(frozen=True)
+class Tables:
+    """The engine's tables of one speed over crank angle [deg, 0..720 in RESOLUTION_DEG steps]."""
+    theta: np.ndarray
+    speed_rpm: np.ndarray                  # crankshaft speed
+    cams: dict                             # (bank, cam) -> load torque [N m] at the crankshaft's angle
+
+    def speed(self, crank_deg):
+        return float(np.interp(crank_deg, self.theta, self.speed_rpm, period=720.0)) * math.pi / 30.0
+
+    def load(self, bank, cam, crank_deg):
+        return float(np.interp(crank_deg, self.theta, self.cams[(bank, cam)], period=720.0))
+
+
+def engine_tables(rpm, seed=make_tables.DEFAULT_SEED):
+    """The V6's SYNTHESIZED tables at one speed: the bank engine's camshaft loads (bank left; the
+    right bank's the same 120 deg later) and the crankshaft speed of firing order 3."""
+    theta = make_tables.angles()
+    torques, _, _ = make_tables.camshaft_torques(rpm, seed, BANK_ENGINE)
+    speed, _, _ = make_tables.crankshaft_speed(rpm, seed, BANK_ENGINE)
+    names = {"intakeCam": "camshaftIntake.tau", "exhaustCam": "camshaftExhaust.tau"}
+    cams = {}
+    for bank, (_, offset) in BANKS.items():
+        for cam, column in names.items():
+            cams[(bank, cam)] = np.interp(theta - offset, theta, torques[column], period=720.0)
+    return Tables(theta, speed, cams)
+
+
+class Coupled:
+    """The primary drive's FMU and a bank drive's FMU per bank, coupled through the shafts."""
+
+    def __init__(self, tables):
+        self.tables = tables
+        self.primary = fmu.Slave("primary", fmu=export.fmu_for(PRIMARY),
+                                 parameters={"solver.step": 1e-4 / SOLVER_DIVISIONS["primary"]})
+        bank_step = {"solver.step": 1e-4 / SOLVER_DIVISIONS["bank"]}
+        self.banks = {b: fmu.Slave(b, fmu=export.fmu_for(BANK), parameters=bank_step) for b in BANKS}
+        self.rows = []
+
+    def bank_inputs(self, bank, shaft_w):
+        """A bank's inputs: its shaft's speed and its camshafts' loads at their crank angles."""
+        cams = self.banks[bank].get([c + ".phi" for c in CAMS]) if self.rows else {c + ".phi": 0.0 for c in CAMS}
+        u = {"shaft.w": shaft_w, "tensioner.supplyPressure": SUPPLY_PRESSURE}
+        for c in CAMS:
+            u[c + ".tau"] = self.tables.load(bank, c, CAM_RATIO * math.degrees(cams[c + ".phi"]))
+        return u
+
+    def start(self):
+        w = self.tables.speed(0.0)
+        loads = {}
+        for bank, slave in self.banks.items():
+            slave.initialize(inputs=self.bank_inputs(bank, w / SHAFT_RATIO))
+            loads[BANKS[bank][0] + ".tau"] = -slave.get(["shaft.tau"])["shaft.tau"]
+        self.primary.initialize(inputs={"crankshaft.w": w, "tensioner.supplyPressure": SUPPLY_PRESSURE, **loads})
+        self.record(0.0, {"crankshaft.w": w, **loads}, {})
+
+    def step(self, t, h):
+        """One communication step from t: the coupling's inputs sampled at t, the FMUs stepped side by side."""
+        p = self.primary.get(["crankshaft.phi"] + [f"{s}.w" for s, _ in BANKS.values()])
+        u_primary = {"crankshaft.w": self.tables.speed(math.degrees(p["crankshaft.phi"]))}
+        u_banks = {}
+        for bank, (shaft, _) in BANKS.items():
+            u_banks[bank] = self.bank_inputs(bank, p[shaft + ".w"])
+            for name, value in u_banks[bank].items():
+                self.banks[bank].set(name, value)
+            u_primary[shaft + ".tau"] = -self.banks[bank].get(["shaft.tau"])["shaft.tau"]
+        self.primary.step(h, inputs=u_primary, t=t)
+        for slave in self.banks.values():
+            slave.step(h, t=t)
+        self.record(t + h, u_primary, u_banks)
+
+    def record(self, t, u_primary, u_banks):
+        row = {"time": t}
+        row.update({f"primary.{k}": v for k, v in self.primary.get().items()})
+        row.update({f"primary.input.{k}": v for k, v in u_primary.items()})
+        for bank, slave in self.banks.items():
+            row.update({f"{bank}.{k}": v for k, v in slave.get().items()})
+            row.update({f"{bank}.input.{k}": v for k, v in u_banks.get(bank, {}).items()})
+        self.rows.append(row)
+
+    def close(self):
+        for slave in [self.primary, *self.banks.values()]:
+            slave.close()
+
+    def cpu(self):
+        return sum(s.step_cpu for s in [self.primary, *self.banks.values()])
+
+
+def run_coupled(rpm, cycles, run_in, h, tables):
+    """The coupled V6 over run_in + cycles engine cycles at communication step h: its record
+    (name -> array) and the CPU seconds inside the three FMUs' fmi2DoStep."""
+    steps = int(math.ceil((run_in + cycles) * 120.0 / rpm / h - 1e-9))
+    coupled = Coupled(tables)
+    try:
+        coupled.start()
+        for k in range(steps):
+            coupled.step(k * h, h)
+    except fmu.Refusal as e:
+        raise UserError(f"v-engine at a communication step of {h:g} s: {e}") from None
+    finally:
+        coupled.close()
+    names = [n for n in coupled.rows[-1]]
+    record = {n: np.array([r.get(n, np.nan) for r in coupled.rows]) for n in names}
+    return record, coupled.cpu()
+
+
+def of(record, prefix):
+    """One FMU's part of the record, its names without the prefix."""
+    return {k[len(prefix) + 1:]: v for k, v in record.items() if k.startswith(prefix + ".")}
+
+
+def per_cycle(record, spans):
+    """Per counted engine cycle (keyed on the crankshaft's angle): the means of the three tensioner
+    forces, the primary's tight-span force and each shaft's load, each bank's camshaft timing
+    peak-to-peak [deg crank]."""
+    crank = record["primary.crankshaft.phi"]
+    quantities = {"primary.tensioner.F.mean": ("N", record["primary.tensioner.F"], np.mean),
+                  "primary.chain.Ftight.mean": ("N", record["primary.chain.Ftight"], np.mean)}
+    for bank, (shaft, offset) in BANKS.items():
+        quantities[f"{bank}.tensioner.F.mean"] = ("N", record[f"{bank}.tensioner.F"], np.mean)
+        quantities[f"{shaft}.load.mean"] = ("N m", record[f"primary.input.{shaft}.tau"], np.mean)
+        timing = np.degrees(CAM_RATIO * record[f"{bank}.intakeCam.phi"] - crank)
+        quantities[f"{bank}.intakeCam.timing.peakToPeak_degCA"] = ("deg", timing, np.ptp)
+    return {key: (unit, np.array([f(x[i0:i1]) for i0, i1, _ in spans])) for key, (unit, x, f) in quantities.items()}
+
+
+def balances(record, first, last):
+    """Per shaft over samples first..last: the primary's mean chain torque on it against the bank's
+    torque it carries; the work the primary does on the shaft (the held load times the primary
+    shaft's turn per step) against the work the bank's shaft receives (the same torque times the
+    bank shaft's turn); the bank shaft's angle against the primary's, from their difference at the
+    start (drift) [deg]. Per FMU: the energy balance."""
+    out = {}
+    for bank, (shaft, _) in BANKS.items():
+        load = record[f"primary.input.{shaft}.tau"][first + 1:last]       # (held over the step ending at its row)
+        turn_p = np.diff(record[f"primary.{shaft}.phi"][first:last])
+        turn_b = np.diff(record[f"{bank}.shaft.phi"][first:last])
+        work_p, work_b = float(np.sum(load * turn_p)), float(np.sum(load * turn_b))
+        offset = record[f"{bank}.shaft.phi"] - record[f"primary.{shaft}.phi"]
+        drift = np.degrees(offset[first:last] - offset[0])   # (the start's offset: the preload winds the shaft up)
+        chain = float(np.mean(record[f"primary.{shaft}.tauChain"][first:last]))
+        out[shaft] = {"chainTorque_Nm": chain, "load_Nm": float(np.mean(load)),
+                      "torqueError": chain / float(np.mean(load)) - 1.0,
+                      "workPrimary_J": work_p, "workBank_J": work_b, "workError": work_b / work_p - 1.0,
+                      "driftMax_deg": float(np.max(np.abs(drift))), "driftEnd_deg": float(drift[-1])}
+    for name in ("primary", *BANKS):
+        out[f"{name}.energyBalance"] = checks.energy_balance_error(of(record, name), first, last - 1)
+    return out
+
+
+def settling(record, run_in):
+    """The run-in: the engine cycles until all three tensioners have settled (runin.detect on each
+    FMU's stroke over the primary's crank angle; at least 8 cycles, at most `run_in`); per FMU its
+    Settling."""
+    out = {}
+    for name in ("primary", *BANKS):
+        sub = {"crankshaft.phi": record["primary.crankshaft.phi"], runin.SIGNAL: record[f"{name}.{runin.SIGNAL}"]}
+        out[name] = runin.detect(sub, "crankshaft", RUN_IN_MINIMUM, run_in)
+    return max(s.cycles for s in out.values()), out
+
+
+def study(rpm, cycles, run_in, step, tables):
+    """One communication step: the coupled run over `run_in` + `cycles` engine cycles, its run-in
+    until the three tensioners have settled, then `cycles` counted cycles' statistics, the balances
+    and the cost; or, when an FMU refuses a step (a blow-up), {"step_s", "failed": the reason}."""
+    wall = time.perf_counter()
+    try:
+        record, cpu = run_coupled(rpm, cycles, run_in, step, tables)
+    except UserError as e:   # (a blow-up: where explicit coupling stops being stable, a result)
+        return {"step_s": step, "failed": str(e)}
+    settled_after, settlings = settling(record, run_in)
+    spans = cycle_stats.counted_spans(record["primary.crankshaft.phi"], settled_after, cycles)
+    stats = {key: (unit, *cycle_stats.interval(values)[:2]) for key, (unit, values) in per_cycle(record, spans).items()}
+    return {"step_s": step, "runInCycles": settled_after, "settled": {k: v.json() for k, v in settlings.items()},
+            "cycles": len(spans), "stats": stats, "balances": balances(record, spans[0][0], spans[-1][1]),
+            "doStepCpu_s": cpu, "wall_s": time.perf_counter() - wall, "simulated_s": float(record["time"][-1])}
+
+
+def balance_rows(results):
+    """The report's balance table: a row per communication step and shaft, a row per failed step."""
+    rows = ["| communication step | shaft | chain torque / carried load [N m] | work primary / bank [J] (error) | "
+            "drift max [deg] | energy balance primary, left, right | run-in, counted cycles | CPU in fmi2DoStep [s] |",
+            "|---|---|---|---|---|---|---|---|"]
+    for r in (r for r in results if "failed" not in r):
+        b = r["balances"]
+        energy = ", ".join(f"{b[f'{n}.energyBalance']:+.2%}" for n in ("primary", *BANKS))
+        settled = "" if all(v["tensionerSettled"] for v in r["settled"].values()) else " (not settled)"
+        for shaft in (s for s, _ in BANKS.values()):
+            x = b[shaft]
+            rows.append(f"| {r['step_s'] * 1e6:g} us | {shaft} | {x['chainTorque_Nm']:.3f} / {x['load_Nm']:.3f} "
+                        f"({x['torqueError']:+.2%}) | {x['workPrimary_J']:.2f} / {x['workBank_J']:.2f} "
+                        f"({x['workError']:+.3%}) | {x['driftMax_deg']:.4f} | {energy} | "
+                        f"{r['runInCycles']}{settled}, {r['cycles']} | {r['doStepCpu_s']:.1f} |")
+    for r in (r for r in results if "failed" in r):
+        rows.append(f"| {r['step_s'] * 1e6:g} us | failed: {r['failed']} | | | | | | |")
+    return rows
+
+
+def stats_rows(results):
+    """The report's table of cycle statistics: a row per quantity, a column per step that ran."""
+    ran = [r for r in results if "failed" not in r]
+    rows = ["| quantity | " + " | ".join(f"{r['step_s'] * 1e6:g} us" for r in ran) + " |", "|---|" + "---|" * len(ran)]
+    for key, (unit, *_rest) in ran[0]["stats"].items():
+        cells = [f"{r['stats'][key][1]:.4g} +- {r['stats'][key][2]:.2g}" for r in ran]
+        rows.append(f"| `{key}` [{unit}] | " + " | ".join(cells) + " |")
+    return rows
+
+
+def report(results, rpm, cycles, run_in):
+    """The study's page (markdown): per communication step the balances, the drift, the cycle
+    statistics with their intervals and the cost."""
+    steps = " ".join(f"{r['step_s']:g}" for r in results)
+    lines = ["# V-engine chains coupled through their shafts", "",
+             f"`python -m harness v-engine --rpm {rpm:g} --cycles {cycles} --run-in {run_in} --steps {steps}` "
+             "(harness/vengine.py, docs/v_engine.md): the V6's primary drive and its two bank drives, three FMUs "
+             f"coupled explicitly through the intermediate shafts at {rpm:g} rpm: a run-in until the three tensioners "
+             f"have settled (at most {run_in} engine cycles; the cycles per step in the table), then the counted "
+             "cycles.", "", "## Balances across the shafts and drift", ""]
+    lines += balance_rows(results)
+    lines += ["", "## Cycle statistics (mean +- 95 % half-width over the counted cycles)", ""] + stats_rows(results)
+    return "\n".join(lines) + "\n"
+
+
+def add_arguments(ap):
+    ap.add_argument("--rpm", type=float, default=3000.0, help="engine speed (default 3000; the tables are made for it)")
+    ap.add_argument("--cycles", type=int, default=48, help="counted engine cycles (default 48)")
+    ap.add_argument("--run-in", type=int, default=40,
+                    help="the most engine cycles of run-in (default 40): it ends when all three tensioners have "
+                         "settled (as the main job's), the run is this long plus the counted cycles")
+    ap.add_argument("--steps", type=float, nargs="+", default=[1e-4, 5e-5, 2.5e-5, 1.25e-5],
+                    help="communication steps [s] (default 1e-4 5e-5 2.5e-5 1.25e-5); each a whole number of both "
+                         "drives' "
+                         f"solver steps (1e-4/{SOLVER_DIVISIONS['primary']} and 1e-4/{SOLVER_DIVISIONS['bank']})")
+    ap.add_argument("--out", default=str(paths.RESULTS / "v_engine"), help="the results folder")
+
+
+def check(ap, args):
+    for h in args.steps:
+        for fmu_name, n in SOLVER_DIVISIONS.items():
+            steps = h / (1e-4 / n)
+            if abs(steps - round(steps)) > 1e-6 or round(steps) < 1:
+                ap.error(f"--steps {h:g}: not a whole number of the {fmu_name} drive's solver steps (1e-4/{n} s)")
+    if args.cycles < 2 or args.run_in < RUN_IN_MINIMUM:
+        ap.error(f"--cycles: at least 2, --run-in: at least {RUN_IN_MINIMUM}")
+    return args
+
+
+def run(args):
+    tables = engine_tables(args.rpm)
+    results = []
+    for h in args.steps:
+        results.append(study(args.rpm, args.cycles, args.run_in, h, tables))
+        if "failed" in results[-1]:
+            print(f"step {h:g} s: failed: {results[-1]['failed']}", flush=True)
+            continue
+        b = results[-1]["balances"]
+        shafts = "; ".join(f"{shaft} torque {b[shaft]['torqueError']:+.2%}, work {b[shaft]['workError']:+.3%}, "
+                           f"drift {b[shaft]['driftMax_deg']:.4f} deg" for shaft, _ in BANKS.values())
+        print(f"step {h:g} s: {shafts}"
+              + f"; CPU {results[-1]['doStepCpu_s']:.1f} s", flush=True)
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "v_engine.json").write_text(json.dumps({"rpm": args.rpm, "cycles": args.cycles, "runIn": args.run_in,
+                                                   "results": results}, indent=1) + "\n")
+    (out / "v_engine.md").write_text(report(results, args.rpm, args.cycles, args.run_in))
+    print(f"written: {out / 'v_engine.md'}, {out / 'v_engine.json'}")
+    return 0
