@@ -105,7 +105,7 @@ def report_closure(layout, angle, n_links):
         print(f"closure: {moved} shifted by {layout.shift * 1e3:+.6f} mm along ({d[0]:.4g}, {d[1]:.4g}): "
               f"{spec.prescribed['name']}-{name} {distance * 1e3:.3f} mm; the solver closes {n_links} links with "
               f"the tension guide at {angle:.3e} rad from its drawn pose")
-    elif spec.tensioner:
+    else:
         print(f"closure: the tension guide at {math.degrees(angle):+.4f} deg from its drawn pose closes {n_links} links "
               f"(solver), the plunger extended by {stroke_of_turn(layout, angle) * 1e3:+.3f} mm")
     print(neighbour_counts(layout, n_links))
@@ -115,8 +115,6 @@ def report_tensioner(layout, angle, n_links):
     """The tension guide and the plunger with the new chain and with a worn one, and their margins
     to the guide's angle range and the plunger's end stops."""
     spec = layout.spec
-    if not spec.tensioner:
-        return
     low, high = spec.guide(spec.tensioner.guide).angle_range_deg
     estimate = guide_turn_for_links(layout, n_links)
     worn = guide_turn_for_links(layout, n_links, spec.chain.pitch * (1.0 + WORN_ELONGATION))

@@ -151,10 +151,9 @@ class Layout:
                                 "clearance": 0.0},
                       "route": list(spec.route)},
             "sprockets": sprockets, "guides": drive_guides}
-        if spec.tensioner:
-            _, pad, housing, direction = self.mounts(guides)
-            drive["tensioner"] = {"guide": spec.tensioner.guide, "housing": xy(housing), "direction": xy(direction),
-                                  "contactPoint": xy(pad), **spec.tensioner.fields}
+        _, pad, housing, direction = self.mounts(guides)
+        drive["tensioner"] = {"guide": spec.tensioner.guide, "housing": xy(housing), "direction": xy(direction),
+                              "contactPoint": xy(pad), **spec.tensioner.fields}
         drive["contact"] = json.loads(json.dumps(spec.contact))
         drive["measurement"] = dict(spec.measurement, monitoredLink=spec.measurement.get("monitoredLink", 0))
         return drive

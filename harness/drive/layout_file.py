@@ -57,7 +57,7 @@ class LayoutSpec:
     sprockets: tuple            # dicts: name, center, teeth, motion, inertia, form
     route: tuple
     guides: tuple               # GuideSpec in the file's order
-    tensioner: TensionerSpec | None
+    tensioner: TensionerSpec
     contact: dict
     closure: dict               # {"kind": "tensioner"} or {"kind": "sprocket-shift", "sprockets", "direction"}
     measurement: dict | None
@@ -216,11 +216,10 @@ def read_guides(rd, items, sprocket_names):
 
 
 def read_tensioner(rd, obj, guides):
-    """The tensioner on its pivoting guide (left out: the default drive's, on the pivoting guide);
-    None when no guide pivots and none is given."""
+    """The tensioner on its pivoting guide (left out: the default drive's, on the pivoting guide)."""
     pivoting = [g.name for g in guides if g.pivoting]
-    if obj is None and not pivoting:
-        return None
+    if not pivoting:   # (the solver closes the chain with the tensioner's guide)
+        rd.fail("guides", "no pivoting guide: a drive needs a tension guide with its tensioner (motion \"pivoting\")")
     obj = {} if obj is None else obj   # (the default drive's tensioner on the one pivoting guide)
     if not isinstance(obj, dict):
         rd.fail("tensioner", f"{json.dumps(obj)} is not an object")
@@ -282,10 +281,7 @@ def default_measurement(sprockets, route, tensioner):
     largest = max(s["teeth"] for s in sprockets if s["name"] in free)
     last = [n for n in free if next(s for s in sprockets if s["name"] == n)["teeth"] == largest][-1]
     after = lambda name: route[(route.index(name) + 1) % len(route)]  # noqa: E731
-    out = {"tightSpan": [last, after(last)]}
-    if tensioner:
-        out["slackSpan"] = [tensioner.guide, after(tensioner.guide)]
-    return out
+    return {"tightSpan": [last, after(last)], "slackSpan": [tensioner.guide, after(tensioner.guide)]}
 
 
 def read_layout(path):

@@ -30,10 +30,9 @@ def draw_guides(ax, layout):
         ax.annotate(name, (g["center"][0] * 1e3 + r * 1e3 * math.cos(a[20]), g["center"][1] * 1e3
                            + r * 1e3 * math.sin(a[20])), textcoords="offset points", xytext=(6, 0), fontsize=7,
                     color="tab:blue")
-    if layout.spec.tensioner:
-        pivot, pad, housing, _ = layout.mounts(guides)
-        ax.plot(pivot[0] * 1e3, pivot[1] * 1e3, "o", color="tab:blue", ms=5)
-        ax.plot([housing[0] * 1e3, pad[0] * 1e3], [housing[1] * 1e3, pad[1] * 1e3], "-", color="tab:purple", lw=5)
+    pivot, pad, housing, _ = layout.mounts(guides)
+    ax.plot(pivot[0] * 1e3, pivot[1] * 1e3, "o", color="tab:blue", ms=5)
+    ax.plot([housing[0] * 1e3, pad[0] * 1e3], [housing[1] * 1e3, pad[1] * 1e3], "-", color="tab:purple", lw=5)
 
 
 def layout_sketch(path, layout, n_links, title):

@@ -119,6 +119,7 @@ def mutate(layout, where, value):
     ("closure.sprockets", ["crankshaft"], "closure.sprockets: the prescribed sprocket stays"),
     ("closure.direction", [0, 0], "closure.direction: [0, 0] has no direction"),
     ("rotation", "left", "rotation: \"left\" is not one of clockwise, counterclockwise"),
+    ("guides.0.motion", "fixed", "guides: no pivoting guide: a drive needs a tension guide"),
 ])
 def test_a_layout_files_mistake_is_named(where, value, named, tmp_path):
     layout = json.loads((LAYOUTS / "sohc_single_cam.json").read_text())
