@@ -8,8 +8,8 @@ its own FMU, coupled through the intermediate shafts by an explicit master in fm
   the rotation) = - bank `shaft.tau` (the chain's torque on the bank's prescribed sprocket,
   positive in the running direction: negative while the bank's chain loads it);
 
-both sampled at the start of each communication step and held over it (Jacobi: the three FMUs
-step side by side). The engine: a 60-degree V6, firing order 1-2-3-4-5-6 alternating between the
+each step's inputs computed from the outputs after the step before and held over the step
+(Jacobi: the three FMUs step side by side; fmpy, or libcosim with the same bits: run_libcosim). The engine: a 60-degree V6, firing order 1-2-3-4-5-6 alternating between the
 banks every 120 deg crank; each bank's camshafts carry the valve-train model's loads of three
 cylinders (the i4-bucket valve trains, SYNTHESIZED), the crankshaft speed the model's with firing
 order 3 (estimates). A bank's statistics key on the engine's crank angle: its camshafts turn at
@@ -79,71 +79,109 @@ def engine_tables(rpm, seed=make_tables.DEFAULT_SEED):
     return Tables(theta, speed, cams)
 
 
-class Coupled:
-    """The primary drive's FMU and a bank drive's FMU per bank, coupled through the shafts."""
+FMUS = ("primary", *BANKS)
+# what the coupling reads of each FMU after a step
+COUPLING_OUTPUTS = {"primary": ["crankshaft.phi"] + [f"{shaft}.w" for shaft, _ in BANKS.values()],
+                    **{bank: ["shaft.tau"] + [c + ".phi" for c in CAMS] for bank in BANKS}}
 
-    def __init__(self, tables):
-        self.tables = tables
-        self.primary = fmu.Slave("primary", fmu=export.fmu_for(PRIMARY),
-                                 parameters={"solver.step": 1e-4 / SOLVER_DIVISIONS["primary"]})
-        bank_step = {"solver.step": 1e-4 / SOLVER_DIVISIONS["bank"]}
-        self.banks = {b: fmu.Slave(b, fmu=export.fmu_for(BANK), parameters=bank_step) for b in BANKS}
+
+def drive_of(name):
+    return PRIMARY if name == "primary" else BANK
+
+
+def solver_step(name):
+    return 1e-4 / SOLVER_DIVISIONS["primary" if name == "primary" else "bank"]
+
+
+def start_outputs(tables):
+    """What the first step's inputs are computed from: every angle 0, the shafts at the table's
+    speed, no torque from the banks yet (the run-in takes up the start)."""
+    out = {"primary": {"crankshaft.phi": 0.0, **{f"{s}.w": tables.speed(0.0) / SHAFT_RATIO for s, _ in BANKS.values()}}}
+    out.update({bank: {"shaft.tau": 0.0, **{c + ".phi": 0.0 for c in CAMS}} for bank in BANKS})
+    return out
+
+
+def coupling_inputs(tables, out):
+    """Every FMU's inputs for the next step from the outputs after the last one ({fmu: {name: value}}):
+    the crankshaft's speed from the table at its angle, each bank's shaft at the primary's shaft
+    speed and its camshafts' loads at their crank angles, each primary shaft loaded by minus its
+    bank's chain torque."""
+    p = out["primary"]
+    u = {"primary": {"crankshaft.w": tables.speed(math.degrees(p["crankshaft.phi"])),
+                     "tensioner.supplyPressure": SUPPLY_PRESSURE}}
+    for bank, (shaft, _) in BANKS.items():
+        b = out[bank]
+        u[bank] = {"shaft.w": p[shaft + ".w"], "tensioner.supplyPressure": SUPPLY_PRESSURE}
+        for c in CAMS:
+            u[bank][c + ".tau"] = tables.load(bank, c, CAM_RATIO * math.degrees(b[c + ".phi"]))
+        u["primary"][shaft + ".tau"] = -b["shaft.tau"]
+    return u
+
+
+COUPLINGS = ("jacobi", "speed-first")
+
+
+class Coupled:
+    """The three FMUs in fmpy, stepped side by side: each step's inputs from the outputs after the
+    step before (the first step's from start_outputs), held over the step. `coupling` "jacobi":
+    exactly that; "speed-first": each bank gets its new inputs first, and the primary's load is the
+    bank's chain torque with them (its direct dependence on its shaft's speed taken in; the banks
+    initialized first, the primary then with their torques)."""
+
+    def __init__(self, tables, coupling="jacobi"):
+        self.tables, self.coupling = tables, coupling
+        self.slaves = {n: fmu.Slave(n, fmu=export.fmu_for(drive_of(n)), parameters={"solver.step": solver_step(n)})
+                       for n in FMUS}
         self.rows = []
 
-    def bank_inputs(self, bank, shaft_w):
-        """A bank's inputs: its shaft's speed and its camshafts' loads at their crank angles."""
-        cams = self.banks[bank].get([c + ".phi" for c in CAMS]) if self.rows else {c + ".phi": 0.0 for c in CAMS}
-        u = {"shaft.w": shaft_w, "tensioner.supplyPressure": SUPPLY_PRESSURE}
-        for c in CAMS:
-            u[c + ".tau"] = self.tables.load(bank, c, CAM_RATIO * math.degrees(cams[c + ".phi"]))
-        return u
-
     def start(self):
-        w = self.tables.speed(0.0)
-        loads = {}
-        for bank, slave in self.banks.items():
-            slave.initialize(inputs=self.bank_inputs(bank, w / SHAFT_RATIO))
-            loads[BANKS[bank][0] + ".tau"] = -slave.get(["shaft.tau"])["shaft.tau"]
-        self.primary.initialize(inputs={"crankshaft.w": w, "tensioner.supplyPressure": SUPPLY_PRESSURE, **loads})
-        self.record(0.0, {"crankshaft.w": w, **loads}, {})
+        self.inputs = coupling_inputs(self.tables, start_outputs(self.tables))
+        for bank in BANKS:
+            self.slaves[bank].initialize(inputs=self.inputs[bank])
+        self.banks_first()
+        self.slaves["primary"].initialize(inputs=self.inputs["primary"])
+        self.record(0.0, {})
+
+    def banks_first(self):
+        """speed-first: the primary's loads from the banks' chain torques with their new inputs."""
+        if self.coupling != "speed-first":
+            return
+        for bank, (shaft, _) in BANKS.items():
+            for name, value in self.inputs[bank].items():
+                self.slaves[bank].set(name, value)
+            self.inputs["primary"][shaft + ".tau"] = -self.slaves[bank].get(["shaft.tau"])["shaft.tau"]
 
     def step(self, t, h):
-        """One communication step from t: the coupling's inputs sampled at t, the FMUs stepped side by side."""
-        p = self.primary.get(["crankshaft.phi"] + [f"{s}.w" for s, _ in BANKS.values()])
-        u_primary = {"crankshaft.w": self.tables.speed(math.degrees(p["crankshaft.phi"]))}
-        u_banks = {}
-        for bank, (shaft, _) in BANKS.items():
-            u_banks[bank] = self.bank_inputs(bank, p[shaft + ".w"])
-            for name, value in u_banks[bank].items():
-                self.banks[bank].set(name, value)
-            u_primary[shaft + ".tau"] = -self.banks[bank].get(["shaft.tau"])["shaft.tau"]
-        self.primary.step(h, inputs=u_primary, t=t)
-        for slave in self.banks.values():
-            slave.step(h, t=t)
-        self.record(t + h, u_primary, u_banks)
+        """One communication step from t with the inputs the last outputs gave."""
+        used = self.inputs
+        for name, slave in self.slaves.items():
+            slave.step(h, inputs=used[name], t=t)
+        out = {name: slave.get(COUPLING_OUTPUTS[name]) for name, slave in self.slaves.items()}
+        self.inputs = coupling_inputs(self.tables, out)
+        self.banks_first()
+        self.record(t + h, used)
 
-    def record(self, t, u_primary, u_banks):
+    def record(self, t, used):
+        """A row: the outputs at t and the inputs held over the step that ended there."""
         row = {"time": t}
-        row.update({f"primary.{k}": v for k, v in self.primary.get().items()})
-        row.update({f"primary.input.{k}": v for k, v in u_primary.items()})
-        for bank, slave in self.banks.items():
-            row.update({f"{bank}.{k}": v for k, v in slave.get().items()})
-            row.update({f"{bank}.input.{k}": v for k, v in u_banks.get(bank, {}).items()})
+        for name, slave in self.slaves.items():
+            row.update({f"{name}.{k}": v for k, v in slave.get().items()})
+            row.update({f"{name}.input.{k}": v for k, v in used.get(name, {}).items()})
         self.rows.append(row)
 
     def close(self):
-        for slave in [self.primary, *self.banks.values()]:
+        for slave in self.slaves.values():
             slave.close()
 
     def cpu(self):
-        return sum(s.step_cpu for s in [self.primary, *self.banks.values()])
+        return sum(s.step_cpu for s in self.slaves.values())
 
 
-def run_coupled(rpm, cycles, run_in, h, tables):
+def run_coupled(rpm, cycles, run_in, h, tables, coupling="jacobi"):
     """The coupled V6 over run_in + cycles engine cycles at communication step h: its record
     (name -> array) and the CPU seconds inside the three FMUs' fmi2DoStep."""
     steps = int(math.ceil((run_in + cycles) * 120.0 / rpm / h - 1e-9))
-    coupled = Coupled(tables)
+    coupled = Coupled(tables, coupling)
     try:
         coupled.start()
         for k in range(steps):
@@ -155,6 +193,45 @@ def run_coupled(rpm, cycles, run_in, h, tables):
     names = [n for n in coupled.rows[-1]]
     record = {n: np.array([r.get(n, np.nan) for r in coupled.rows]) for n in names}
     return record, coupled.cpu()
+
+
+def run_libcosim(steps, h, tables, names):
+    """The same coupling with libcosim stepping the three FMUs (its fixed-step algorithm; the inputs
+    overridden by a manipulator before each step, the outputs read by an observer after it): the
+    record of `names` ({fmu: [output names]}) after each step, as arrays named "<fmu>.<output>"."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.ERROR)
+    ex = CosimExecution.from_step_size(int(round(h * 1e9)))
+    idx, vr = {}, {}
+    for name in FMUS:
+        path = export.fmu_for(drive_of(name))
+        idx[name] = ex.add_local_slave(CosimLocalSlave(fmu_path=str(path), instance_name=name))
+        vr[name] = {v.name: v.valueReference for v in fmu.unpacked(path)[0].modelVariables}
+        ex.real_initial_value(idx[name], vr[name]["solver.step"], solver_step(name))
+    inputs = coupling_inputs(tables, start_outputs(tables))
+    for name in FMUS:
+        for k, value in inputs[name].items():
+            ex.real_initial_value(idx[name], vr[name][k], value)
+    observer, manipulator = CosimObserver.create_last_value(), CosimManipulator.create_override()
+    ex.add_observer(observer)
+    ex.add_manipulator(manipulator)
+    wanted = {n: sorted(set(names.get(n, [])) | set(COUPLING_OUTPUTS[n])) for n in FMUS}
+    rows = []
+    for k in range(steps):
+        if k:
+            for name in FMUS:
+                manipulator.slave_real_values(idx[name], [vr[name][x] for x in inputs[name]], list(inputs[name].values()))
+        if not ex.step():
+            raise UserError(f"libcosim: the coupled V6's step {k} failed")
+        out = {n: dict(zip(wanted[n], observer.last_real_values(idx[n], [vr[n][x] for x in wanted[n]]))) for n in FMUS}
+        inputs = coupling_inputs(tables, out)
+        rows.append({f"{n}.{x}": v for n in FMUS for x, v in out[n].items()})
+    return {key: np.array([r[key] for r in rows]) for key in rows[0]}
 
 
 def of(record, prefix):
@@ -212,13 +289,13 @@ def settling(record, run_in):
     return max(s.cycles for s in out.values()), out
 
 
-def study(rpm, cycles, run_in, step, tables):
+def study(rpm, cycles, run_in, step, tables, coupling="jacobi"):
     """One communication step: the coupled run over `run_in` + `cycles` engine cycles, its run-in
     until the three tensioners have settled, then `cycles` counted cycles' statistics, the balances
     and the cost; or, when an FMU refuses a step (a blow-up), {"step_s", "failed": the reason}."""
     wall = time.perf_counter()
     try:
-        record, cpu = run_coupled(rpm, cycles, run_in, step, tables)
+        record, cpu = run_coupled(rpm, cycles, run_in, step, tables, coupling)
     except UserError as e:   # (a blow-up: where explicit coupling stops being stable, a result)
         return {"step_s": step, "failed": str(e)}
     settled_after, settlings = settling(record, run_in)
@@ -259,12 +336,13 @@ def stats_rows(results):
     return rows
 
 
-def report(results, rpm, cycles, run_in):
+def report(results, rpm, cycles, run_in, coupling="jacobi"):
     """The study's page (markdown): per communication step the balances, the drift, the cycle
     statistics with their intervals and the cost."""
     steps = " ".join(f"{r['step_s']:g}" for r in results)
     lines = ["# V-engine chains coupled through their shafts", "",
-             f"`python -m harness v-engine --rpm {rpm:g} --cycles {cycles} --run-in {run_in} --steps {steps}` "
+             f"`python -m harness v-engine --coupling {coupling} --rpm {rpm:g} --cycles {cycles} --run-in {run_in} "
+             f"--steps {steps}` "
              "(harness/vengine.py, docs/v_engine.md): the V6's primary drive and its two bank drives, three FMUs "
              f"coupled explicitly through the intermediate shafts at {rpm:g} rpm: a run-in until the three tensioners "
              f"have settled (at most {run_in} engine cycles; the cycles per step in the table), then the counted "
@@ -284,6 +362,9 @@ def add_arguments(ap):
                     help="communication steps [s] (default 1e-4 5e-5 2.5e-5 1.25e-5); each a whole number of both "
                          "drives' "
                          f"solver steps (1e-4/{SOLVER_DIVISIONS['primary']} and 1e-4/{SOLVER_DIVISIONS['bank']})")
+    ap.add_argument("--coupling", choices=COUPLINGS, default="jacobi",
+                    help="jacobi (default): every input from the outputs after the step before; speed-first: the "
+                         "banks' new speeds first, the primary's loads their chain torques with them")
     ap.add_argument("--out", default=str(paths.RESULTS / "v_engine"), help="the results folder")
 
 
@@ -302,7 +383,7 @@ def run(args):
     tables = engine_tables(args.rpm)
     results = []
     for h in args.steps:
-        results.append(study(args.rpm, args.cycles, args.run_in, h, tables))
+        results.append(study(args.rpm, args.cycles, args.run_in, h, tables, args.coupling))
         if "failed" in results[-1]:
             print(f"step {h:g} s: failed: {results[-1]['failed']}", flush=True)
             continue
@@ -313,8 +394,9 @@ def run(args):
               + f"; CPU {results[-1]['doStepCpu_s']:.1f} s", flush=True)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "v_engine.json").write_text(json.dumps({"rpm": args.rpm, "cycles": args.cycles, "runIn": args.run_in,
+    (out / "v_engine.json").write_text(json.dumps({"coupling": args.coupling, "rpm": args.rpm, "cycles": args.cycles,
+                                                   "runIn": args.run_in,
                                                    "results": results}, indent=1) + "\n")
-    (out / "v_engine.md").write_text(report(results, args.rpm, args.cycles, args.run_in))
+    (out / "v_engine.md").write_text(report(results, args.rpm, args.cycles, args.run_in, args.coupling))
     print(f"written: {out / 'v_engine.md'}, {out / 'v_engine.json'}")
     return 0
