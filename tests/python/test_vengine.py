@@ -1,6 +1,6 @@
 """The V-engine coupling (harness/vengine.py): the balances on a record with known answers, the
 coupling's sign conventions and held inputs on a brief coupled run, the same bits when libcosim
-steps the three FMUs, and the communication steps it refuses."""
+or ecos steps the three FMUs, and the communication steps it refuses."""
 import math
 
 import numpy as np
@@ -80,14 +80,16 @@ def test_a_communication_step_that_splits_a_solver_step_is_refused():
     assert "--steps 3e-05" in line and "bank drive" in line and "1e-4/32" in line, line
 
 
-def test_libcosim_steps_the_coupled_v6_to_the_same_bits():
-    """The same coupling with libcosim stepping the three FMUs (manipulator and observer around its
-    fixed-step algorithm) gives fmpy's bits for every output the coupling reads and each tensioner
-    force, over two engine cycles at 0.1 ms."""
+@pytest.mark.parametrize("importer", ["libcosim", "ecos"])
+def test_another_importer_steps_the_coupled_v6_to_the_same_bits(importer):
+    """The same coupling with libcosim (manipulator and observer around its fixed-step algorithm) or
+    ecos (inputs set before, outputs read after each step) stepping the three FMUs gives fmpy's bits
+    for every output the coupling reads and each tensioner force, over two engine cycles at 0.1 ms."""
     tables = vengine.engine_tables(3000.0)
     fmpy_record, _ = vengine.run_coupled(3000.0, 1, 1, 1e-4, tables)
     names = {name: ["tensioner.F"] for name in vengine.FMUS}
-    libcosim_record = vengine.run_libcosim(len(fmpy_record["time"]) - 1, 1e-4, tables, names)
-    assert set(libcosim_record) >= {f"{n}.tensioner.F" for n in vengine.FMUS}
-    for key, values in libcosim_record.items():
+    run = {"libcosim": vengine.run_libcosim, "ecos": vengine.run_ecos}[importer]
+    other = run(len(fmpy_record["time"]) - 1, 1e-4, tables, names)
+    assert set(other) >= {f"{n}.tensioner.F" for n in vengine.FMUS}
+    for key, values in other.items():
         assert np.array_equal(values, fmpy_record[key][1:]), key
