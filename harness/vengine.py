@@ -37,13 +37,30 @@ PRIMARY = paths.ROOT / "tests" / "drives" / "v6_primary.json"
 BANK = paths.ROOT / "tests" / "drives" / "v6_bank.json"
 # bank: (its shaft on the primary drive, its firing offset [deg crank] after cylinder 1's firing TDC)
 BANKS = {"left": ("leftShaft", 0.0), "right": ("rightShaft", 120.0)}
-SHAFT_RATIO = 28.0 / 21.0   # crankshaft revolutions per intermediate-shaft revolution
-CAM_RATIO = 2.0             # crankshaft revolutions per camshaft revolution (28/21 x 33/22)
+
+
+def _teeth(drive):
+    return {s["name"]: s["teeth"] for s in json.loads(drive.read_text())["sprockets"]}
+
+
+def _ratios():
+    """Crankshaft revolutions per intermediate-shaft revolution (28/21) and per camshaft revolution
+    (28/21 x 33/22 = 2, in integers, exact), from the drives' teeth."""
+    primary, bank = _teeth(PRIMARY), _teeth(BANK)
+    shafts = {primary[s] for s, _ in BANKS.values()}
+    cams = {bank[c] for c in CAMS}
+    if len(shafts) != 1 or len(cams) != 1:
+        raise ValueError(f"{PRIMARY.name}, {BANK.name}: both intermediate shafts and both camshafts need the same teeth")
+    shaft, cam = shafts.pop(), cams.pop()
+    return shaft / primary["crankshaft"], (shaft * cam) / (primary["crankshaft"] * bank["shaft"])
+
+
 # solver steps per 0.1 ms: at or below each drive's own (1e-4/35 and 1e-4/31, chaindrive-info
 # --defaults), so that communication steps of 0.1 ms / 2, / 4 and / 8 hold whole solver steps
 SOLVER_DIVISIONS = {"primary": 40, "bank": 32}
 SUPPLY_PRESSURE = 3.0e5     # [Pa] the gallery's oil pressure at every tensioner (the main job's)
 CAMS = ("intakeCam", "exhaustCam")
+SHAFT_RATIO, CAM_RATIO = _ratios()
 RUN_IN_MINIMUM = 8          # engine cycles of run-in at least (the main job's at 3000 rpm)
 
 # [E] a V6's crankshaft: firing order 3 (three firings per revolution), smoother than an I4's

@@ -11,9 +11,11 @@ scaled by the pitch squared, the joint damping the default's.
 """
 import dataclasses
 
-JOINT_STIFFNESS_06B = 1.2e8   # [N/m] the default drive's (per-link stiffness typically 1e8-1.5e8)
-JOINT_DAMPING = 250.0         # [N s/m] the default drive's lubricated pin-bushing joint
-PITCH_06B = 0.009525
+from . import design
+
+JOINT_STIFFNESS_06B = design.JOINT_K   # [N/m] the default drive's (per-link stiffness typically 1e8-1.5e8)
+JOINT_DAMPING = design.JOINT_C         # [N s/m] the default drive's lubricated pin-bushing joint
+PITCH_06B = design.PITCH
 
 
 def estimated_link_inertia(mass, pitch, plate_h):
@@ -58,11 +60,11 @@ CHAINS = {
     "05B-1": _iso606("05B-1", 0.008, 0.005, 0.00711, 0.00144, {
         "pitch": "ISO 606", "rollerDiameter": "ISO 606", "plateHeight": "ISO 606 (recalled, not in a retrieved source)",
         "linkMass": "0.18 kg/m (DIN 8187 vendor table) x pitch"}),
-    "06B-1": _iso606("06B-1", 0.009525, 0.00635, 0.00826, 0.0039, {
+    "06B-1": _iso606("06B-1", design.PITCH, design.ROLLER_D, design.PLATE_H, design.LINK_MASS, {
         "pitch": "ISO 606", "rollerDiameter": "ISO 606", "plateHeight": "ISO 606 (recalled, not in a retrieved source)",
         "linkMass": "0.41 kg/m (DIN 8187 vendor table) x pitch: the default drive's 3.9 g",
         "linkInertia": "the default drive's 7.0e-8 kg m^2 (the estimate's rule, written to 1e-9)"},
-        link_inertia=7.0e-8),
+        link_inertia=round(design.LINK_INERTIA, 9)),
     "08B-1": _iso606("08B-1", 0.0127, 0.00851, 0.01181, 0.008255, {
         "pitch": "ISO 606", "rollerDiameter": "ISO 606", "plateHeight": "ISO 606",
         "linkMass": "0.65 kg/m (ISO 606 vendor table; others give up to 0.70) x pitch"}),

@@ -105,18 +105,26 @@ def elements(drive=None):
                     is_hydraulic(d), len(measured.get("tightSpan", [])) == 2, len(measured.get("slackSpan", [])) == 2)
 
 
-def geometry(drive=None):
-    """Assembled geometry of a drive, from chaindrive-info."""
+def geometry(drive=None, info=None):
+    """Assembled geometry of a drive (a file, a description dict, or None: the default drive), from
+    chaindrive-info (`info`: its executable; default the build's)."""
     fd, tmp = tempfile.mkstemp(suffix=".json")
     os.close(fd)
+    written = None
     try:
-        cmd = [paths.executable("chaindrive-info"), "--geometry", tmp, "--quiet"]
+        if isinstance(drive, dict):
+            fd, written = tempfile.mkstemp(suffix=".json")
+            with os.fdopen(fd, "w") as f:
+                json.dump(drive, f)
+        cmd = [info or paths.executable("chaindrive-info"), "--geometry", tmp, "--quiet"]
         if drive:
-            cmd += ["--drive", str(drive)]
+            cmd += ["--drive", str(written or drive)]
         done = subprocess.run(cmd, capture_output=True, text=True)
         if done.returncode != 0:  # (a drive that does not load or close: its one line, no traceback)
             raise tool_failure("chaindrive-info", done.stderr)
         with open(tmp) as f:
             return json.load(f)
     finally:
-        os.unlink(tmp)
+        for path in (tmp, written):
+            if path:
+                os.unlink(path)

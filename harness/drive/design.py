@@ -42,6 +42,12 @@ TG_MARGIN = 0.020          # face beyond the wrapped part at each end
 TG_DEFLECT = 0.018        # how far the face pushes into the straight slack span
 TG_AT = 0.55              # face centre at this fraction of the span from the crank
 TG_INERTIA = 1.0e-3       # PA66 faced steel arm about the pivot [E]
+TG_ANGLE_RANGE_DEG = (-6.0, 6.0)  # its closure search range
+TG_PIVOT_BEFORE = 0.025   # the pivot beyond the face's lower end, along the span
+TG_PIVOT_BEHIND = 0.012   # and behind the face
+PAD_AT = 2.0 / 3.0        # the tensioner's pad at this fraction of the arm from the pivot
+PAD_BEHIND = 0.010        # behind the face
+HOUSING_OUT = 0.030       # the tensioner's housing behind the pad
 G_FACE_R = 0.80
 G_MARGIN = 0.030
 G_DEFLECT = 0.0015
@@ -96,15 +102,16 @@ def tension_guide_mounts(tg_c, tg_u, tg_n, tg_a0, tg_a1):
     e0 = (tg_c[0] + TG_FACE_R * math.cos(tg_a0), tg_c[1] + TG_FACE_R * math.sin(tg_a0))
     e1 = (tg_c[0] + TG_FACE_R * math.cos(tg_a1), tg_c[1] + TG_FACE_R * math.sin(tg_a1))
     low, high = (e0, e1) if math.hypot(*e0) < math.hypot(*e1) else (e1, e0)
-    pivot = (low[0] - 0.025 * tg_u[0] + 0.012 * tg_n[0], low[1] - 0.025 * tg_u[1] + 0.012 * tg_n[1])
+    pivot = (low[0] - TG_PIVOT_BEFORE * tg_u[0] + TG_PIVOT_BEHIND * tg_n[0],
+             low[1] - TG_PIVOT_BEFORE * tg_u[1] + TG_PIVOT_BEHIND * tg_n[1])
     # tensioner pad at two thirds of the face length from the pivot, 10 mm behind the face
-    fx, fy = pivot[0] + (2.0 / 3.0) * (high[0] - pivot[0]), pivot[1] + (2.0 / 3.0) * (high[1] - pivot[1])
+    fx, fy = pivot[0] + PAD_AT * (high[0] - pivot[0]), pivot[1] + PAD_AT * (high[1] - pivot[1])
     # project onto the face back: move outward to 10 mm behind the face surface
     dx, dy = fx - tg_c[0], fy - tg_c[1]
     r = math.hypot(dx, dy)
     on_face = (tg_c[0] + TG_FACE_R * dx / r, tg_c[1] + TG_FACE_R * dy / r)
-    pad = (on_face[0] + 0.010 * tg_n[0], on_face[1] + 0.010 * tg_n[1])
-    housing = (pad[0] + 0.030 * tg_n[0], pad[1] + 0.030 * tg_n[1])
+    pad = (on_face[0] + PAD_BEHIND * tg_n[0], on_face[1] + PAD_BEHIND * tg_n[1])
+    housing = (pad[0] + HOUSING_OUT * tg_n[0], pad[1] + HOUSING_OUT * tg_n[1])
     return pivot, pad, housing, (-tg_n[0], -tg_n[1])
 
 
@@ -148,7 +155,7 @@ def build(cam_height):
         ],
         "guides": [
             {"name": "tensionGuide", "motion": "pivoting", "pivot": [r6(pivot[0]), r6(pivot[1])],
-             "inertia": TG_INERTIA, "angleRange_deg": [-6.0, 6.0],
+             "inertia": TG_INERTIA, "angleRange_deg": list(TG_ANGLE_RANGE_DEG),
              "profile": [{"type": "arc", "center": [r6(tg_c[0]), r6(tg_c[1])], "radius": TG_FACE_R,
                           "startAngle_deg": deg(tg_a0), "endAngle_deg": deg(tg_a1), "chainSide": "outside"}]},
             {"name": "fixedGuide", "motion": "fixed",

@@ -11,17 +11,15 @@ gap marked).
 """
 import json
 import math
-import os
 import pathlib
-import tempfile
 
 from .. import paths
 from ..errors import UserError
-from . import geometry as geo
+from . import description, geometry as geo
 from .design import check_out
 from .layout_checks import check_drive, wraps
 from .layout_drive import (WORN_ELONGATION, Layout, close_by_shift, closure_angle, elongation_taken_up,
-                           guide_turn_for_links, run_info, shift_for_links)
+                           guide_turn_for_links, shift_for_links)
 from .layout_file import read_layout
 
 DEFAULT_STROKE_RANGE = (-0.004, 0.006)  # [m] the hydraulic tensioner's end stops (docs/hydraulic_tensioner.md)
@@ -181,20 +179,6 @@ def refuse_open(layout, n_links, held, message, picture):
                     f"{held:.3f}; gap {gap * 1e3:.2f} mm): {message.splitlines()[0] if message else 'no closure'}")
 
 
-def assembled_geometry(info, drive):
-    """The solver's assembled geometry of a drive dict (chaindrive-info --geometry)."""
-    fd, path = tempfile.mkstemp(suffix=".json")
-    os.close(fd)
-    try:
-        rc, out, err = run_info(info, drive, path)
-        if rc != 0:
-            raise UserError(f"chaindrive-info: {(err or out).strip().splitlines()[0]}")
-        with open(path) as f:
-            return json.load(f)
-    finally:
-        os.unlink(path)
-
-
 def run(args):
     from ..plots.drive_picture import drive_picture
     spec = read_layout(args.layout)
@@ -212,7 +196,7 @@ def run(args):
         refuse_open(layout, n_links, held, message, picture)
     drive = layout.drive(n_links)
     report_closure(layout, angle, n_links)
-    geometry = assembled_geometry(info, drive)
+    geometry = description.geometry(drive, info)
     teeth = {s["name"]: s["teeth"] for s in spec.sprockets}
     print("wraps: " + ", ".join(f"{k} {w:.1f} deg ({m:.1f} teeth in mesh)" for k, (w, m) in wraps(geometry, teeth).items()))
     report_guides(layout)

@@ -10,18 +10,20 @@ import json
 import math
 
 from ..errors import UserError
+from . import design
 from .chains import CHAINS, ChainData, JOINT_DAMPING
 from .description import drive_json
 
 SCHEMA = "chaindrive.layout/1"
 
-# the default drive's guides and tensioner (docs/default_drive.md): what a layout leaves out
-TENSION_GUIDE_DEFAULTS = dict(face_r=0.35, deflect=0.018, at=0.55, margin=0.020)
-FIXED_GUIDE_DEFAULTS = dict(face_r=0.80, deflect=0.0015, at=0.50, margin=0.030)
-PIVOT_BEFORE, PIVOT_BEHIND = 0.025, 0.012          # [m] before the face's end, behind the face
-PAD_AT, PAD_BEHIND, HOUSING_OUT = 2.0 / 3.0, 0.010, 0.030
-TENSION_GUIDE_INERTIA, ANGLE_RANGE_DEG = 1.0e-3, (-6.0, 6.0)
-TENSIONER_DEFAULTS = {"preload": 25.0, "stiffness": 5000.0, "model": "hydraulic"}
+# the default drive's guides and tensioner (design.py, docs/default_drive.md): what a layout leaves out
+TENSION_GUIDE_DEFAULTS = dict(face_r=design.TG_FACE_R, deflect=design.TG_DEFLECT, at=design.TG_AT,
+                              margin=design.TG_MARGIN)
+FIXED_GUIDE_DEFAULTS = dict(face_r=design.G_FACE_R, deflect=design.G_DEFLECT, at=design.G_AT, margin=design.G_MARGIN)
+PIVOT_BEFORE, PIVOT_BEHIND = design.TG_PIVOT_BEFORE, design.TG_PIVOT_BEHIND   # [m]
+PAD_AT, PAD_BEHIND, HOUSING_OUT = design.PAD_AT, design.PAD_BEHIND, design.HOUSING_OUT
+TENSION_GUIDE_INERTIA, ANGLE_RANGE_DEG = design.TG_INERTIA, design.TG_ANGLE_RANGE_DEG
+TENSIONER_DEFAULTS = {"preload": design.TENS_PRELOAD, "stiffness": design.TENS_K, "model": "hydraulic"}
 OWN_CHAIN_FIELDS = ("pitch", "rollerDiameter", "plateHeight", "linkMass", "linkInertia")
 
 
