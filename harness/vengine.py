@@ -24,6 +24,7 @@ import dataclasses
 import json
 import math
 import pathlib
+import sys
 import time
 
 import numpy as np
@@ -210,6 +211,9 @@ def run_coupled(rpm, cycles, run_in, h, tables, coupling="jacobi"):
         raise UserError(f"v-engine at a communication step of {h:g} s: {e}") from None
     finally:
         coupled.close()
+        for name, slave in coupled.slaves.items():   # (what the FMUs warned of, once each)
+            for text in sorted({m for status, _, m in slave.messages if status == 1}):
+                print(f"warning: {name} FMU at {h:g} s: {text}", file=sys.stderr)
     names = [n for n in coupled.rows[-1]]
     record = {n: np.array([r.get(n, np.nan) for r in coupled.rows]) for n in names}
     return record, coupled.cpu()
@@ -341,6 +345,17 @@ def settling(record, run_in):
     return max(s.cycles for s in out.values()), out
 
 
+def warnings_of(result):
+    """A study point's warning lines: an energy balance beyond the main job's limit, a tensioner that
+    had not settled when the counted cycles began."""
+    if "failed" in result:
+        return []
+    lines = [f"{name}: {w}" for name in FMUS for w in checks.energy_warnings(result["balances"][f"{name}.energyBalance"])]
+    lines += [f"{name}: the tensioner had not settled after {v['runInCycles']} cycles"
+              for name, v in result["settled"].items() if not v["tensionerSettled"]]
+    return lines
+
+
 def study(rpm, cycles, run_in, step, tables, coupling="jacobi"):
     """One communication step: the coupled run over `run_in` + `cycles` engine cycles, its run-in
     until the three tensioners have settled, then `cycles` counted cycles' statistics, the balances
@@ -436,6 +451,8 @@ def run(args):
     results = []
     for h in args.steps:
         results.append(study(args.rpm, args.cycles, args.run_in, h, tables, args.coupling))
+        for line in warnings_of(results[-1]):
+            print(f"warning: step {h:g} s: {line}", flush=True)
         if "failed" in results[-1]:
             print(f"step {h:g} s: failed: {results[-1]['failed']}", flush=True)
             continue

@@ -25,6 +25,16 @@ PAD_AT, PAD_BEHIND, HOUSING_OUT = design.PAD_AT, design.PAD_BEHIND, design.HOUSI
 TENSION_GUIDE_INERTIA, ANGLE_RANGE_DEG = design.TG_INERTIA, design.TG_ANGLE_RANGE_DEG
 TENSIONER_DEFAULTS = {"preload": design.TENS_PRELOAD, "stiffness": design.TENS_K, "model": "hydraulic"}
 OWN_CHAIN_FIELDS = ("pitch", "rollerDiameter", "plateHeight", "linkMass", "linkInertia")
+# the fields given as lengths (metres, or millimetres with the suffix _mm)
+LENGTHS = {"pitch", "rollerDiameter", "plateHeight", "center", "radius", "push", "margin", "before", "behind",
+           "padBehind", "housing"}
+TOP_FIELDS = ("schema", "name", "description", "rotation", "gravity", "chain", "sprockets", "route", "guides",
+              "tensioner", "contact", "closure", "measurement")
+GUIDE_FIELDS = ("name", "motion", "radius", "push", "at", "margin")
+PIVOTING_FIELDS = GUIDE_FIELDS + ("inertia", "angleRange_deg", "pivot")
+# the drive schema's tensioner fields a layout passes on (the drive's reader checks them)
+TENSIONER_FIELDS = ("guide", "padAt", "padBehind", "housing", "model", "preload", "stiffness", "damping",
+                    "dampingExtension", "hydraulic")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -97,6 +107,16 @@ class Reader:
             self.fail(f"{where}{key}", f"{value} lies outside [{low}, {high}]")
         return float(value)
 
+    def known(self, obj, where, allowed):
+        """A misspelled or misplaced field is an error, not a default silently taken: every key of obj
+        is one of `allowed` (lengths also with the suffix _mm)."""
+        if not isinstance(obj, dict):
+            self.fail(where.rstrip(".") or "(file)", f"{json.dumps(obj)} is not an object")
+        names = set(allowed) | {a + "_mm" for a in allowed if a in LENGTHS}
+        for key in obj:
+            if key not in names:
+                self.fail(f"{where}{key}", f"not a field here; the fields: {', '.join(sorted(names))}")
+
     def once(self, obj, key, where):
         if key in obj and key + "_mm" in obj:
             self.fail(f"{where}{key}", f"given twice ({key} and {key}_mm): give one")
@@ -141,7 +161,9 @@ def read_chain(rd, obj):
         if key in obj or key + "_mm" in obj or base is None:
             read = rd.length if key in ("pitch", "rollerDiameter", "plateHeight") else rd.number
             own[key] = read(obj, key, "chain.", positive=True)
+    rd.known(obj, "chain.", ("designation", "standard", "numberOfLinks", "joint") + OWN_CHAIN_FIELDS)
     joint = obj.get("joint", {})
+    rd.known(joint, "chain.joint.", ("stiffness", "damping"))
     stiffness = rd.number(joint, "stiffness", "chain.joint.", default=base.joint_stiffness if base else None,
                           positive=True)
     damping = rd.number(joint, "damping", "chain.joint.", default=JOINT_DAMPING, low=0.0)
@@ -173,16 +195,19 @@ def read_sprockets(rd, items):
         name = obj.get("name") if isinstance(obj, dict) else None
         if not isinstance(name, str) or not name:
             rd.fail(f"{where}name", f"{json.dumps(name)} is not a name")
+        motion = rd.choice(obj, "motion", where, ("prescribed", "free", "idler"), default="free")
         teeth = obj.get("teeth")
         if isinstance(teeth, bool) or not isinstance(teeth, int) or not 7 <= teeth <= 200:
             rd.fail(f"{where}teeth", f"{json.dumps(teeth)} is not an integer from 7 to 200")
-        motion = rd.choice(obj, "motion", where, ("prescribed", "free", "idler"), default="free")
         inertia = rd.number(obj, "inertia", where, positive=True) if motion != "prescribed" else None
         form = rd.choice(obj, "toothForm", where, ("min", "mean", "max"), default="mean")
         out.append(dict(name=name, center=rd.point(obj, "center", where), teeth=teeth, motion=motion,
                         inertia=inertia, form=form))
     if sum(s["motion"] == "prescribed" for s in out) != 1:
         rd.fail("sprockets", "exactly one sprocket has motion \"prescribed\" (the crankshaft: its speed drives the chain)")
+    for k, (obj, sprocket) in enumerate(zip(items, out)):
+        rd.known(obj, f"sprockets[{k}].", ("name", "center", "teeth", "motion", "toothForm")
+                 + (("inertia",) if sprocket["motion"] != "prescribed" else ()))
     return tuple(out)
 
 
@@ -191,6 +216,7 @@ def read_guide(rd, obj, where, sprocket_names):
     if not isinstance(name, str) or not name:
         rd.fail(f"{where}name", f"{json.dumps(name)} is not a name")
     pivoting = rd.choice(obj, "motion", where, ("fixed", "pivoting")) == "pivoting"
+    rd.known(obj, where, PIVOTING_FIELDS if pivoting else GUIDE_FIELDS)
     d = TENSION_GUIDE_DEFAULTS if pivoting else FIXED_GUIDE_DEFAULTS
     face = dict(face_r=rd.length(obj, "radius", where, default=d["face_r"], positive=True),
                 deflect=rd.length(obj, "push", where, default=d["deflect"]),
@@ -199,6 +225,7 @@ def read_guide(rd, obj, where, sprocket_names):
     if not pivoting:
         return GuideSpec(name, False, face)
     pivot = obj.get("pivot", {})
+    rd.known(pivot, where + "pivot.", ("near", "before", "behind"))
     near = pivot.get("near")
     if near is not None and near not in sprocket_names:
         rd.fail(f"{where}pivot.near", f"{json.dumps(near)} is not a sprocket ({', '.join(sprocket_names)})")
@@ -223,8 +250,7 @@ def read_tensioner(rd, obj, guides):
     if not pivoting:   # (the solver closes the chain with the tensioner's guide)
         rd.fail("guides", "no pivoting guide: a drive needs a tension guide with its tensioner (motion \"pivoting\")")
     obj = {} if obj is None else obj   # (the default drive's tensioner on the one pivoting guide)
-    if not isinstance(obj, dict):
-        rd.fail("tensioner", f"{json.dumps(obj)} is not an object")
+    rd.known(obj, "tensioner.", TENSIONER_FIELDS)
     guide = obj.get("guide", pivoting[0] if len(pivoting) == 1 else None)
     if guide not in pivoting:
         rd.fail("tensioner.guide", f"{json.dumps(guide)} is not a pivoting guide ({', '.join(pivoting) or 'none'})")
@@ -259,7 +285,8 @@ def read_closure(rd, obj, sprockets):
     """{"kind": "tensioner"} (default: the tension guide takes up the chain at the centres as drawn)
     or {"kind": "sprocket-shift", "sprockets": [...], "direction": [dx, dy]}: these sprockets move
     together along the direction until the chain closes with the tension guide at its drawn pose."""
-    obj = obj or {"kind": "tensioner"}
+    obj = {"kind": "tensioner"} if obj is None else obj
+    rd.known(obj, "closure.", ("kind", "sprockets", "direction"))
     kind = rd.choice(obj, "kind", "closure.", ("tensioner", "sprocket-shift"))
     if kind == "tensioner":
         return {"kind": kind}
@@ -296,11 +323,14 @@ def read_layout(path):
         raise UserError(f"{path}: {e}")
     if not isinstance(obj, dict) or obj.get("schema") != SCHEMA:
         rd.fail("schema", f"{json.dumps(obj.get('schema') if isinstance(obj, dict) else None)} is not \"{SCHEMA}\"")
+    rd.known(obj, "", TOP_FIELDS)
     sense = {"clockwise": -1.0, "counterclockwise": 1.0}[rd.choice(obj, "rotation", "", ("clockwise", "counterclockwise"))]
     chain = obj.get("chain")
     sprockets = read_sprockets(rd, obj.get("sprockets"))
     names = [s["name"] for s in sprockets]
     guides = read_guides(rd, obj.get("guides", []), names)
+    if obj.get("measurement") is not None:   # (its spans are checked by the drive's reader)
+        rd.known(obj["measurement"], "measurement.", ("tightSpan", "slackSpan", "monitoredLink"))
     tensioner = read_tensioner(rd, obj.get("tensioner"), guides)
     route = read_route(rd, obj.get("route"), sprockets, guides)
     name = obj.get("name")
@@ -310,5 +340,6 @@ def read_layout(path):
                       read_chain(rd, chain),
                       read_links(rd, chain), sprockets, route, guides, tensioner,
                       obj.get("contact", drive_json()["contact"]), read_closure(rd, obj.get("closure"), sprockets),
-                      obj.get("measurement") or default_measurement(sprockets, route, tensioner),
+                      obj["measurement"] if obj.get("measurement") is not None
+                      else default_measurement(sprockets, route, tensioner),
                       obj.get("gravity", [0.0, -9.81]))

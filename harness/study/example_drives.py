@@ -79,6 +79,7 @@ def layout_report(example, out):
         done = subprocess.run(cmd, capture_output=True, text=True, cwd=paths.ROOT)
         if done.returncode != 0:
             raise UserError(f"{example.name}: the layout aid failed: {done.stderr.strip()}")
+        sys.stderr.write(done.stderr)   # (a tool's notes are never dropped)
         report = done.stdout.replace(str(drive), f"tests/drives/{example.name}.json")
         report = report.replace(str(pathlib.Path(scratch) / "drive.png"), "drive.png")
         (out / "layout.md").write_text(f"# The layout aid on {example.name}\n\n`python -m harness layout "
@@ -105,6 +106,9 @@ def main_job(example, rpm, cycles, out):
         done = subprocess.run(cmd, capture_output=True, text=True)
         if done.returncode != 0:
             raise UserError(f"{example.name}: the main job failed: {done.stderr.strip().splitlines()[-1:]}")
+        sys.stderr.write(done.stderr)
+        warnings = [line for line in done.stdout.splitlines() if line.startswith("warning:")]
+        sys.stderr.writelines(f"{example.name}: {line}\n" for line in warnings)
         for name in ("run.json", "summary.json"):
             shutil.copyfile(pathlib.Path(scratch) / name, out / name)
         data = np.genfromtxt(pathlib.Path(scratch) / "outputs.csv", delimiter=",", names=True, deletechars="")

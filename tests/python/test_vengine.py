@@ -93,3 +93,38 @@ def test_another_importer_steps_the_coupled_v6_to_the_same_bits(importer):
     assert set(other) >= {f"{n}.tensioner.F" for n in vengine.FMUS}
     for key, values in other.items():
         assert np.array_equal(values, fmpy_record[key][1:]), key
+
+
+def test_the_cycle_statistics_measure_known_answers():
+    """Per engine cycle of the crankshaft's angle: each tensioner force's mean (100 N plus a ripple of
+    order 3), each shaft load's mean (5 N m), each bank's camshaft timing peak-to-peak: the camshaft
+    0.002 rad ahead and behind its half of the crankshaft's angle at order 1 gives 2 x 2 x 0.002 rad
+    of crank angle, 0.229 deg."""
+    n = 4 * 720 + 1
+    crank = np.linspace(0.0, 4 * 4.0 * math.pi, n)
+    rec = {"primary.crankshaft.phi": crank, "primary.tensioner.F": 100.0 + 10.0 * np.sin(3.0 * crank),
+           "primary.chain.Ftight": np.full(n, 900.0)}
+    for bank, (shaft, _) in vengine.BANKS.items():
+        rec[f"{bank}.tensioner.F"] = 100.0 + 10.0 * np.sin(3.0 * crank)
+        rec[f"primary.input.{shaft}.tau"] = 5.0 + np.sin(crank)
+        rec[f"{bank}.intakeCam.phi"] = crank / vengine.CAM_RATIO + 0.002 * np.sin(crank)
+    from harness import cycle_stats
+    spans = cycle_stats.counted_spans(crank, 1, None)
+    stats = vengine.per_cycle(rec, spans)
+    assert len(spans) == 3
+    for bank, (shaft, _) in vengine.BANKS.items():
+        assert np.allclose(stats[f"{bank}.tensioner.F.mean"][1], 100.0, atol=1e-9)
+        assert np.allclose(stats[f"{shaft}.load.mean"][1], 5.0, atol=1e-9)
+        assert np.allclose(stats[f"{bank}.intakeCam.timing.peakToPeak_degCA"][1], math.degrees(4 * 0.002), rtol=1e-4)
+
+
+def test_a_study_point_warns_of_what_it_missed():
+    """An energy balance beyond the limit and a tensioner that had not settled are warning lines."""
+    result = {"balances": {"primary.energyBalance": -0.07, "left.energyBalance": 0.01, "right.energyBalance": 0.0},
+              "settled": {"primary": {"runInCycles": 40, "tensionerSettled": False},
+                          "left": {"runInCycles": 9, "tensionerSettled": True},
+                          "right": {"runInCycles": 9, "tensionerSettled": True}}}
+    lines = vengine.warnings_of(result)
+    assert len(lines) == 2 and lines[0].startswith("primary: energy balance -7.00 %"), lines
+    assert "primary: the tensioner had not settled after 40 cycles" in lines
+    assert vengine.warnings_of({"failed": "x"}) == []

@@ -120,6 +120,13 @@ def mutate(layout, where, value):
     ("closure.direction", [0, 0], "closure.direction: [0, 0] has no direction"),
     ("rotation", "left", "rotation: \"left\" is not one of clockwise, counterclockwise"),
     ("guides.0.motion", "fixed", "guides: no pivoting guide: a drive needs a tension guide"),
+    ("guides.1.radiuss_mm", 500, "guides[1].radiuss_mm: not a field here; the fields: at, margin, margin_mm"),
+    ("guides.1.inertia", 1e-3, "guides[1].inertia: not a field here"),
+    ("sprockets.0.inertia", 1e-3, "sprockets[0].inertia: not a field here"),
+    ("chain.linkmass", 0.004, "chain.linkmass: not a field here"),
+    ("tensioner.preLoad", 30.0, "tensioner.preLoad: not a field here"),
+    ("closure", [], "closure: [] is not an object"),
+    ("measurement", ["camshaft"], "measurement: [\"camshaft\"] is not an object"),
 ])
 def test_a_layout_files_mistake_is_named(where, value, named, tmp_path):
     layout = json.loads((LAYOUTS / "sohc_single_cam.json").read_text())
@@ -167,3 +174,17 @@ def test_the_pages_sketch_is_the_committed_layout_and_closes(tmp_path):
     for line in stdout.splitlines():
         if line.startswith(("path at the drawn centres", "closure:", "wraps:")):
             assert line in report, line
+
+
+def test_the_take_up_measures_a_known_elongation():
+    """A known answer for the worn-chain figures: turn the tension guide by the angle that closes a
+    chain 0.02 % longer (the path model), and the elongation the guide takes up at that angle is
+    0.02 % to 1e-6; at the drawn pose it is 0 (the drive closes there with the new chain)."""
+    from harness.drive.layout_drive import elongation_taken_up
+    spec = read_layout(LAYOUTS / "sohc_single_cam.json")
+    drive = json.loads((paths.ROOT / "tests" / "drives" / "sohc_single_cam.json").read_text())
+    layout = Layout(spec, drive["sprockets"][1]["center"][1] - spec.sprocket("camshaft")["center"][1])
+    turn = guide_turn_for_links(layout, 116, spec.chain.pitch * 1.0002)
+    assert turn is not None and abs(turn) > 1e-3
+    assert elongation_taken_up(layout, 116, turn) == pytest.approx(2e-4, abs=1e-6)
+    assert elongation_taken_up(layout, 116, 0.0) == pytest.approx(0.0, abs=1e-6)
