@@ -5,8 +5,10 @@ its own FMU, coupled through the intermediate shafts by an explicit master in fm
 
 - each bank's shaft turns at the primary's shaft speed: bank `shaft.w` = primary `<shaft>.w`;
 - the primary's shaft carries the bank's chain: primary `<shaft>.tau` (a load, positive against
-  the rotation) = - bank `shaft.tau` (the chain's torque on the bank's prescribed sprocket,
-  positive in the running direction: negative while the bank's chain loads it);
+  the rotation) = - the bank's chain torque on its prescribed sprocket (positive in the running
+  direction: negative while the bank's chain loads it), by default its step mean `shaft.tauMean`
+  carried on to the middle of the next step (TORQUES: --torque step-mean passes the plain mean,
+  --torque sampled `shaft.tau` at the step's end, which samples the roller impacts);
 
 each step's inputs computed from the outputs after the step before and held over the step
 (Jacobi: the three FMUs step side by side; fmpy, or libcosim and ecos with the same bits:
@@ -17,8 +19,8 @@ i4-bucket valve trains, SYNTHESIZED), the crankshaft speed the model's with firi
 (estimates). A bank's statistics key on the engine's crank angle: its camshafts turn at half the
 crankshaft's speed through the two ratios (21/28 x 22/33 = 1/2).
 
-    python -m harness v-engine [--coupling jacobi|speed-first] [--rpm 3000] [--cycles 48] [--run-in 40]
-        [--steps 1e-4 5e-5 2.5e-5 1.25e-5] [--out DIR]
+    python -m harness v-engine [--coupling jacobi|speed-first] [--torque extrapolated|step-mean|sampled] [--rpm 3000]
+        [--cycles 48] [--run-in 40] [--steps 1e-4 5e-5 2.5e-5 1.25e-5] [--out DIR]
 """
 import dataclasses
 import json
@@ -101,9 +103,27 @@ def engine_tables(rpm, seed=make_tables.DEFAULT_SEED):
 
 
 FMUS = ("primary", *BANKS)
-# what the coupling reads of each FMU after a step
-COUPLING_OUTPUTS = {"primary": ["crankshaft.phi"] + [f"{shaft}.w" for shaft, _ in BANKS.values()],
-                    **{bank: ["shaft.tau"] + [c + ".phi" for c in CAMS] for bank in BANKS}}
+# the bank's torque the primary's shaft carries, and the output it comes from: "extrapolated" the
+# step mean over the step before carried half a step on to the middle of the next (2 m_k - m_k-1:
+# a plain mean is centred a whole step before the step it is held over, a lag the stiff shafts
+# amplify), "step-mean" the plain mean, "sampled" the torque at the step's end (it samples the
+# roller impacts, 14-20 us, at the communication step)
+TORQUES = {"extrapolated": "shaft.tauMean", "step-mean": "shaft.tauMean", "sampled": "shaft.tau"}
+
+
+def carried_torque(torque, now, before):
+    """The bank's chain torque for the next step from its outputs after the last step (`now`) and
+    after the one before it (`before`; None at the start)."""
+    value = now[TORQUES[torque]]
+    if torque == "extrapolated" and before is not None:
+        return 2.0 * value - before[TORQUES[torque]]
+    return value
+
+
+def coupling_outputs(torque):
+    """What the coupling reads of each FMU after a step ({fmu: [names]})."""
+    return {"primary": ["crankshaft.phi"] + [f"{shaft}.w" for shaft, _ in BANKS.values()],
+            **{bank: [TORQUES[torque]] + [c + ".phi" for c in CAMS] for bank in BANKS}}
 
 
 def drive_of(name):
@@ -114,19 +134,19 @@ def solver_step(name):
     return 1e-4 / SOLVER_DIVISIONS["primary" if name == "primary" else "bank"]
 
 
-def start_outputs(tables):
+def start_outputs(tables, torque):
     """What the first step's inputs are computed from: every angle 0, the shafts at the table's
     speed, no torque from the banks yet (the run-in takes up the start)."""
     out = {"primary": {"crankshaft.phi": 0.0, **{f"{s}.w": tables.speed(0.0) / SHAFT_RATIO for s, _ in BANKS.values()}}}
-    out.update({bank: {"shaft.tau": 0.0, **{c + ".phi": 0.0 for c in CAMS}} for bank in BANKS})
+    out.update({bank: {TORQUES[torque]: 0.0, **{c + ".phi": 0.0 for c in CAMS}} for bank in BANKS})
     return out
 
 
-def coupling_inputs(tables, out):
+def coupling_inputs(tables, out, torque, before=None):
     """Every FMU's inputs for the next step from the outputs after the last one ({fmu: {name: value}}):
     the crankshaft's speed from the table at its angle, each bank's shaft at the primary's shaft
     speed and its camshafts' loads at their crank angles, each primary shaft loaded by minus its
-    bank's chain torque."""
+    bank's chain torque (carried_torque; `before`: the outputs after the step before)."""
     p = out["primary"]
     u = {"primary": {"crankshaft.w": tables.speed(math.degrees(p["crankshaft.phi"])),
                      "tensioner.supplyPressure": SUPPLY_PRESSURE}}
@@ -135,11 +155,20 @@ def coupling_inputs(tables, out):
         u[bank] = {"shaft.w": p[shaft + ".w"], "tensioner.supplyPressure": SUPPLY_PRESSURE}
         for c in CAMS:
             u[bank][c + ".tau"] = tables.load(bank, c, CAM_RATIO * math.degrees(b[c + ".phi"]))
-        u["primary"][shaft + ".tau"] = -b["shaft.tau"]
+        u["primary"][shaft + ".tau"] = -carried_torque(torque, b, before[bank] if before else None)
     return u
 
 
 COUPLINGS = ("jacobi", "speed-first")
+
+
+def combination_problem(coupling, torque):
+    """Why a coupling does not go with a torque (None if it does)."""
+    if coupling == "speed-first" and torque != "sampled":
+        return (f"--torque {torque} with --coupling speed-first: speed-first passes the torque's direct dependence "
+                "on the bank's new speed, which only the sampled torque has (a step mean is the step before's); "
+                "allowed: --torque sampled, or --coupling jacobi")
+    return None
 
 
 class Coupled:
@@ -147,16 +176,19 @@ class Coupled:
     step before (the first step's from start_outputs), held over the step. `coupling` "jacobi":
     exactly that; "speed-first": each bank gets its new inputs first, and the primary's load is the
     bank's chain torque with them (its direct dependence on its shaft's speed taken in; the banks
-    initialized first, the primary then with their torques)."""
+    initialized first, the primary then with their torques). `torque`: TORQUES."""
 
-    def __init__(self, tables, coupling="jacobi"):
-        self.tables, self.coupling = tables, coupling
+    def __init__(self, tables, coupling="jacobi", torque="extrapolated"):
+        if combination_problem(coupling, torque):
+            raise ValueError(combination_problem(coupling, torque))
+        self.tables, self.coupling, self.torque = tables, coupling, torque
+        self.last = None  # the outputs after the last step
         self.slaves = {n: fmu.Slave(n, fmu=export.fmu_for(drive_of(n)), parameters={"solver.step": solver_step(n)})
                        for n in FMUS}
         self.rows = []
 
     def start(self):
-        self.inputs = coupling_inputs(self.tables, start_outputs(self.tables))
+        self.inputs = coupling_inputs(self.tables, start_outputs(self.tables, self.torque), self.torque)
         for bank in BANKS:
             self.slaves[bank].initialize(inputs=self.inputs[bank])
         self.banks_first()
@@ -177,8 +209,10 @@ class Coupled:
         used = self.inputs
         for name, slave in self.slaves.items():
             slave.step(h, inputs=used[name], t=t)
-        out = {name: slave.get(COUPLING_OUTPUTS[name]) for name, slave in self.slaves.items()}
-        self.inputs = coupling_inputs(self.tables, out)
+        wanted = coupling_outputs(self.torque)
+        out = {name: slave.get(wanted[name]) for name, slave in self.slaves.items()}
+        self.inputs = coupling_inputs(self.tables, out, self.torque, self.last)
+        self.last = out
         self.banks_first()
         self.record(t + h, used)
 
@@ -198,11 +232,11 @@ class Coupled:
         return sum(s.step_cpu for s in self.slaves.values())
 
 
-def run_coupled(rpm, cycles, run_in, h, tables, coupling="jacobi"):
+def run_coupled(rpm, cycles, run_in, h, tables, coupling="jacobi", torque="extrapolated"):
     """The coupled V6 over run_in + cycles engine cycles at communication step h: its record
     (name -> array) and the CPU seconds inside the three FMUs' fmi2DoStep."""
     steps = int(math.ceil((run_in + cycles) * 120.0 / rpm / h - 1e-9))
-    coupled = Coupled(tables, coupling)
+    coupled = Coupled(tables, coupling, torque)
     try:
         coupled.start()
         for k in range(steps):
@@ -219,7 +253,7 @@ def run_coupled(rpm, cycles, run_in, h, tables, coupling="jacobi"):
     return record, coupled.cpu()
 
 
-def run_libcosim(steps, h, tables, names):
+def run_libcosim(steps, h, tables, names, torque="extrapolated"):
     """The same coupling with libcosim stepping the three FMUs (its fixed-step algorithm; the inputs
     overridden by a manipulator before each step, the outputs read by an observer after it): the
     record of `names` ({fmu: [output names]}) after each step, as arrays named "<fmu>.<output>"."""
@@ -237,15 +271,15 @@ def run_libcosim(steps, h, tables, names):
         idx[name] = ex.add_local_slave(CosimLocalSlave(fmu_path=str(path), instance_name=name))
         vr[name] = {v.name: v.valueReference for v in fmu.unpacked(path)[0].modelVariables}
         ex.real_initial_value(idx[name], vr[name]["solver.step"], solver_step(name))
-    inputs = coupling_inputs(tables, start_outputs(tables))
+    inputs = coupling_inputs(tables, start_outputs(tables, torque), torque)
     for name in FMUS:
         for k, value in inputs[name].items():
             ex.real_initial_value(idx[name], vr[name][k], value)
     observer, manipulator = CosimObserver.create_last_value(), CosimManipulator.create_override()
     ex.add_observer(observer)
     ex.add_manipulator(manipulator)
-    wanted = {n: sorted(set(names.get(n, [])) | set(COUPLING_OUTPUTS[n])) for n in FMUS}
-    rows = []
+    wanted = {n: sorted(set(names.get(n, [])) | set(coupling_outputs(torque)[n])) for n in FMUS}
+    rows, last = [], None
     for k in range(steps):
         if k:
             for name in FMUS:
@@ -254,12 +288,12 @@ def run_libcosim(steps, h, tables, names):
         if not ex.step():
             raise UserError(f"libcosim: the coupled V6's step {k} failed")
         out = {n: dict(zip(wanted[n], observer.last_real_values(idx[n], [vr[n][x] for x in wanted[n]]))) for n in FMUS}
-        inputs = coupling_inputs(tables, out)
+        inputs, last = coupling_inputs(tables, out, torque, last), out
         rows.append({f"{n}.{x}": v for n in FMUS for x, v in out[n].items()})
     return {key: np.array([r[key] for r in rows]) for key in rows[0]}
 
 
-def run_ecos(steps, h, tables, names):
+def run_ecos(steps, h, tables, names, torque="extrapolated"):
     """The same coupling with ecos stepping the three FMUs (its fixed-step simulation; the inputs set
     before each step, the outputs read after it): the record of `names` ({fmu: [output names]})
     after each step, as arrays named "<fmu>.<output>"."""
@@ -270,8 +304,8 @@ def run_ecos(steps, h, tables, names):
         structure.add_model(name, str(export.fmu_for(drive_of(name))))
     structure.add_parameter_set("parameters", {f"{n}::solver.step": solver_step(n) for n in FMUS})
     sim = EcosSimulation(structure=structure, step_size=h)
-    wanted = {n: sorted(set(names.get(n, [])) | set(COUPLING_OUTPUTS[n])) for n in FMUS}
-    inputs, rows = coupling_inputs(tables, start_outputs(tables)), []
+    wanted = {n: sorted(set(names.get(n, [])) | set(coupling_outputs(torque)[n])) for n in FMUS}
+    inputs, rows, last = coupling_inputs(tables, start_outputs(tables, torque), torque), [], None
     try:
         for k in range(steps + 1):
             for name in FMUS:
@@ -282,7 +316,7 @@ def run_ecos(steps, h, tables, names):
                 continue
             sim.step(1)
             out = {n: {x: sim.get_real(f"{n}::{x}") for x in wanted[n]} for n in FMUS}
-            inputs = coupling_inputs(tables, out)
+            inputs, last = coupling_inputs(tables, out, torque, last), out
             rows.append({f"{n}.{x}": v for n in FMUS for x, v in out[n].items()})
         sim.terminate()
     finally:
@@ -356,13 +390,13 @@ def warnings_of(result):
     return lines
 
 
-def study(rpm, cycles, run_in, step, tables, coupling="jacobi"):
+def study(rpm, cycles, run_in, step, tables, coupling="jacobi", torque="extrapolated"):
     """One communication step: the coupled run over `run_in` + `cycles` engine cycles, its run-in
     until the three tensioners have settled, then `cycles` counted cycles' statistics, the balances
     and the cost; or, when an FMU refuses a step (a blow-up), {"step_s", "failed": the reason}."""
     wall = time.perf_counter()
     try:
-        record, cpu = run_coupled(rpm, cycles, run_in, step, tables, coupling)
+        record, cpu = run_coupled(rpm, cycles, run_in, step, tables, coupling, torque)
     except UserError as e:   # (a blow-up: where explicit coupling stops being stable, a result)
         return {"step_s": step, "failed": str(e)}
     settled_after, settlings = settling(record, run_in)
@@ -403,12 +437,12 @@ def stats_rows(results):
     return rows
 
 
-def report(results, rpm, cycles, run_in, coupling="jacobi"):
+def report(results, rpm, cycles, run_in, coupling="jacobi", torque="extrapolated"):
     """The study's page (markdown): per communication step the balances, the drift, the cycle
     statistics with their intervals and the cost."""
     steps = " ".join(f"{r['step_s']:g}" for r in results)
     lines = ["# V-engine chains coupled through their shafts", "",
-             f"`python -m harness v-engine --coupling {coupling} --rpm {rpm:g} --cycles {cycles} --run-in {run_in} "
+             f"`python -m harness v-engine --coupling {coupling} --torque {torque} --rpm {rpm:g} --cycles {cycles} --run-in {run_in} "
              f"--steps {steps}` "
              "(harness/vengine.py, docs/v_engine.md): the V6's primary drive and its two bank drives, three FMUs "
              f"coupled explicitly through the intermediate shafts at {rpm:g} rpm: a run-in until the three tensioners "
@@ -432,6 +466,10 @@ def add_arguments(ap):
     ap.add_argument("--coupling", choices=COUPLINGS, default="jacobi",
                     help="jacobi (default): every input from the outputs after the step before; speed-first: the "
                          "banks' new speeds first, the primary's loads their chain torques with them")
+    ap.add_argument("--torque", choices=tuple(TORQUES), default="extrapolated",
+                    help="the bank's chain torque the primary's shaft carries: extrapolated (default: the step mean "
+                         "shaft.tauMean carried on to the middle of the next step, 2 m_k - m_k-1), step-mean (the "
+                         "plain mean over the step before) or sampled (shaft.tau at the step's end)")
     ap.add_argument("--out", default=str(paths.RESULTS / "v_engine"), help="the results folder")
 
 
@@ -441,6 +479,8 @@ def check(ap, args):
             steps = h / (1e-4 / n)
             if abs(steps - round(steps)) > 1e-6 or round(steps) < 1:
                 ap.error(f"--steps {h:g}: not a whole number of the {fmu_name} drive's solver steps (1e-4/{n} s)")
+    if combination_problem(args.coupling, args.torque):
+        ap.error(combination_problem(args.coupling, args.torque))
     if args.cycles < 2 or args.run_in < RUN_IN_MINIMUM:
         ap.error(f"--cycles: at least 2, --run-in: at least {RUN_IN_MINIMUM}")
     return args
@@ -450,7 +490,7 @@ def run(args):
     tables = engine_tables(args.rpm)
     results = []
     for h in args.steps:
-        results.append(study(args.rpm, args.cycles, args.run_in, h, tables, args.coupling))
+        results.append(study(args.rpm, args.cycles, args.run_in, h, tables, args.coupling, args.torque))
         for line in warnings_of(results[-1]):
             print(f"warning: step {h:g} s: {line}", flush=True)
         if "failed" in results[-1]:
@@ -463,9 +503,9 @@ def run(args):
               + f"; CPU {results[-1]['doStepCpu_s']:.1f} s", flush=True)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "v_engine.json").write_text(json.dumps({"coupling": args.coupling, "rpm": args.rpm, "cycles": args.cycles,
+    (out / "v_engine.json").write_text(json.dumps({"coupling": args.coupling, "torque": args.torque, "rpm": args.rpm, "cycles": args.cycles,
                                                    "runIn": args.run_in,
                                                    "results": results}, indent=1) + "\n")
-    (out / "v_engine.md").write_text(report(results, args.rpm, args.cycles, args.run_in, args.coupling))
+    (out / "v_engine.md").write_text(report(results, args.rpm, args.cycles, args.run_in, args.coupling, args.torque))
     print(f"written: {out / 'v_engine.md'}, {out / 'v_engine.json'}")
     return 0

@@ -295,6 +295,8 @@ bool ChainDriveModel::readRealOutput(unsigned vr, double& value) const {
     case Binding::RotorRate: value = o.rotorRate[rotorOf_[i]]; break;
     case Binding::RotorChainTorque: value = o.rotorTorque[rotorOf_[i]]; break;
     case Binding::CrankTorque: value = o.crankTorque; break;
+    case Binding::RotorChainTorqueStepMean: value = o.rotorTorqueStepMean[rotorOf_[i]]; break;
+    case Binding::CrankTorqueStepMean: value = o.crankTorqueStepMean; break;
     case Binding::SpanForce: value = o.spanForce[v.index]; break;
     case Binding::TightSpanForce: value = o.tightSpanForce; break;
     case Binding::SlackSpanForce: value = o.slackSpanForce; break;

@@ -597,6 +597,7 @@ void layOutState(Model& m) {
   m.stateInputWork = idx++;
   m.stateDissipated = idx++;
   m.stateChamberOil = m.tensioner.hydraulicChamber() ? idx++ : -1;
+  m.chainImpulse = layOutImpulseStates(idx, static_cast<int>(m.rotors.size()));
   m.nStates = idx;
   m.nGen = 3 * m.chain.links + static_cast<int>(m.rotors.size());
 }

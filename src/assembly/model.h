@@ -5,6 +5,7 @@
 // followed by one angle per rotor.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,38 @@ struct AssemblyReport {
   std::vector<std::string> notes;
 };
 
+/// The accumulators behind the step-mean chain torques: the chain's angular impulse on each rotor
+/// [N m s] (math sense) and the time it accumulated over [s], at the end of a state (link and span
+/// models alike; a saved state of the layout before them is a prefix). Zeroed at every FMU
+/// communication step, so that impulse / time is the torque averaged over the step: what a
+/// co-simulation coupling passes on without sampling the roller impacts (14-20 us) at its step.
+struct ImpulseStates {
+  int first = -1;  // rotor r's impulse at first + r
+  int time = -1;
+};
+
+/// The accumulators' derivatives: the chain torques (math sense) and the time's rate, 1.
+inline void accumulateImpulses(const ImpulseStates& s, const std::vector<double>& chainTorque, double* ydot) {
+  std::copy(chainTorque.begin(), chainTorque.end(), ydot + s.first);
+  ydot[s.time] = 1.0;
+}
+
+/// Their scales in an adaptive method's error norm: so wide that they never steer its steps
+/// (nothing depends on them; the impacts in the torques would only shorten the steps).
+inline void impulseToleranceScales(const ImpulseStates& s, int rotors, double* scale) {
+  std::fill_n(scale + s.first, rotors, 1e9);
+  scale[s.time] = 1e9;
+}
+
+/// Appends the accumulators for `rotors` rotors at state index `next` (advanced past them).
+inline ImpulseStates layOutImpulseStates(int& next, int rotors) {
+  ImpulseStates s;
+  s.first = next;
+  next += rotors;
+  s.time = next++;
+  return s;
+}
+
 struct Model {
   std::string name;
   double sense = -1.0;         // running direction: +1 counterclockwise, -1 clockwise
@@ -165,7 +198,8 @@ struct Model {
   // (x of every link, then y, gamma, vx, vy, omega), so that the per-link loops of the solver run
   // over contiguous memory, several links per vector instruction; then per rotor its angle [,
   // rate]; then the two energy accumulators (input work, dissipated energy); then, with a
-  // hydraulic tensioner, its chamber's oil content [m3] (assembly/chamber_oil.h). The generalized
+  // hydraulic tensioner, its chamber's oil content [m3] (assembly/chamber_oil.h); last the step
+  // means' accumulators (ImpulseStates). The generalized
   // coordinates (and forces) are laid out alike: x, y, gamma of every link, then one per rotor,
   // so the link positions of a state are its first 3 links entries in generalized order.
   enum LinkComponent { kX = 0, kY = 1, kGamma = 2, kVx = 3, kVy = 4, kOmega = 5 };
@@ -173,6 +207,7 @@ struct Model {
   int nGen = 0;                // generalized force entries: 3 per link + 1 per rotor
   int stateInputWork = -1, stateDissipated = -1;
   int stateChamberOil = -1;  // -1: no hydraulic tensioner
+  ImpulseStates chainImpulse;
   int linkState(int link, int component) const { return component * chain.links + link; }
   int linkGen(int link, int component) const { return component * chain.links + link; }
   int rotorGen(int rotor) const { return 3 * chain.links + rotor; }

@@ -220,6 +220,8 @@ struct Data {
                                               // (>= 0 without a penetration)
   std::vector<double> gen;                    // (nGen) generalized forces, laid out as the
                                               // generalized coordinates (model.h)
+  std::vector<double> rotorChainTorque;       // (rotors) [N m] the contacts' part of their generalized
+                                              // forces, math sense: the step means' integrand
   // a CVT's sheaves at the ratio input (dynamics/pin_sheave.h): each pulley's free and running radius
   std::vector<double> pulleyFreeRadius, pulleyRunningRadius;  // (pulleys) [m]
   // tensioner; a hydraulic one's chamber: its state and viscosity in, its rate and flows out

@@ -88,6 +88,7 @@ Data::Data(const Model& m)
     pulleyRunningRadius.push_back(p.runningRadius);
   }
   rotorAngle.assign(m.rotors.size(), 0.0);
+  rotorChainTorque.assign(m.rotors.size(), 0.0);
   rotorRate.assign(m.rotors.size(), 0.0);
   rotorCos.assign(m.rotors.size(), 1.0);
   rotorSin.assign(m.rotors.size(), 0.0);
@@ -119,6 +120,9 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   } else {
     d.nContacts = 0;
   }
+  // the chain's torques on the rotors before the bodies' own forces join them (the joints touch
+  // the links' entries only)
+  std::copy(rotorGen, d.gen.end(), d.rotorChainTorque.begin());
   if (m.stateChamberOil >= 0) {
     const int r = m.tensioner.rotor;
     fillChamber(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], y[m.stateChamberOil], d.chamber);
@@ -152,6 +156,7 @@ void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, 
   ydot[m.stateInputWork] = d.powerInput;
   ydot[m.stateDissipated] = d.powerDissipated;
   if (m.stateChamberOil >= 0) ydot[m.stateChamberOil] = d.chamberOilRate;
+  accumulateImpulses(m.chainImpulse, d.rotorChainTorque, ydot);
 }
 
 EnergyTerms energyTerms(const Model& m, const Data& d, const double* y) {

@@ -223,7 +223,7 @@ std::vector<RotorRef> rotorOrder(const DriveDescription& desc, int prescribed) {
 
 // The value-reference scheme (docs/fmu.md): rotor k's block is 1000 + 10 k ... + 9 (slot 0 its
 // input, 1 its angle, 2 its speed or the prescribed sprocket's torque, 3 the chain's torque on a
-// free sprocket); the first rotors keep the numbers the default drive's FMU always had: the inputs
+// free sprocket or the prescribed one's step mean, 4 a free sprocket's step mean); the first rotors keep the numbers the default drive's FMU always had: the inputs
 // of rotors 0-2 are 1-3, the angle and speed (torque) of rotors 0-3 are 10-17. A span's force is
 // 2000 + its route element.
 unsigned rotorVr(int k, int slot) {
@@ -248,6 +248,17 @@ InterfaceVariable elementVariable(const std::string& element, const char* quanti
   return v;
 }
 
+// The chain's torque on a sprocket averaged over the last communication step: what a coupling
+// passes on (the roller impacts, 14-20 us, are not sampled at its step; src/assembly/model.h).
+InterfaceVariable stepMeanVariable(const std::string& sprocket, const char* quantity, unsigned vr, Binding b,
+                                   const std::string& quoted) {
+  return elementVariable(sprocket, quantity, vr, Out, b, "Torque",
+                         "chain torque on sprocket " + quoted + " averaged over the last communication step (its "
+                         "angular impulse over the step divided by the step; at the start the torque itself), sign "
+                         "as its instantaneous torque; NaN with rigid contacts; span fidelity: the same, of the spans' "
+                         "torque");
+}
+
 // The prescribed sprocket: its speed input, its angle and the chain's torque on it.
 void prescribedVariables(const SprocketDesc& s, std::vector<InterfaceVariable>& inputs,
                          std::vector<InterfaceVariable>& outputs) {
@@ -266,6 +277,9 @@ void prescribedVariables(const SprocketDesc& s, std::vector<InterfaceVariable>& 
       "loads the crankshaft); span fidelity: from the tensions of the spans leaving and arriving at the sprocket");
   tau.dependsOnCrankSpeed = true;
   outputs.push_back(tau);
+  InterfaceVariable mean = stepMeanVariable(s.name, "tauMean", rotorVr(0, 3), Binding::CrankTorqueStepMean, q);
+  mean.dependsOnCrankSpeed = true;  // (at the start: the torque itself)
+  outputs.push_back(mean);
 }
 
 // A free sprocket (loaded or an idler): its load input, its angle, speed and the chain's torque.
@@ -290,6 +304,7 @@ void freeSprocketVariables(const DriveDescription& desc, int index, int k, std::
                                     "chain torque on sprocket " + q + ", positive in the running direction (in steady "
                                     "running it balances the load torque); span fidelity: from the tensions of the "
                                     "spans leaving and arriving at the sprocket"));
+  outputs.push_back(stepMeanVariable(s.name, "tauChainMean", rotorVr(k, 4), Binding::RotorChainTorqueStepMean, q));
 }
 
 // A pivoting guide: its angle and speed.

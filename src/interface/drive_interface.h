@@ -21,7 +21,7 @@ enum class Binding {
   // inputs
   CrankSpeed, LoadTorque, SupplyPressure,
   // outputs of one element (InterfaceVariable::element, ::index)
-  RotorAngle, RotorRate, CrankTorque, RotorChainTorque, SpanForce,
+  RotorAngle, RotorRate, CrankTorque, RotorChainTorque, CrankTorqueStepMean, RotorChainTorqueStepMean, SpanForce,
   // outputs of the drive
   TightSpanForce, SlackSpanForce, TensionerForce, TensionerStroke, TensionerRate, ChamberPressure, CheckValveFlow,
   LeakFlow, LinkTension, LinkNormalForce, LinkSprocketForce, LinkGuideForce, LinkX, LinkY, EnergyKinetic,

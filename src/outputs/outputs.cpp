@@ -25,18 +25,23 @@ double spanForce(const Model& m, const Data& d, const SpanProbe& probe) {
 }
 
 void finishRotorOutputs(const Model& m, const std::vector<double>& angle, const std::vector<double>& rate,
-                        Outputs& out) {
+                        const ImpulseStates& impulse, const double* y, Outputs& out) {
   const std::vector<double>& sign = m.rotorOutputSign;
   const std::size_t nr = m.rotors.size();
   out.rotorAngle.resize(nr);
   out.rotorRate.resize(nr);
+  out.rotorTorqueStepMean.resize(nr);
+  // no time accumulated yet (the start, or a step just begun): the mean's limit, the torque itself
+  const double span = y ? y[impulse.time] : 0.0;
   for (std::size_t r = 0; r < nr; ++r) {
     const RotorModel& ro = m.rotors[r];
     out.rotorAngle[r] = sign[r] * (angle[r] - (ro.isSprocket ? ro.initialAngle : 0.0));
     out.rotorRate[r] = sign[r] * rate[r];
     out.rotorTorque[r] *= sign[r];
+    out.rotorTorqueStepMean[r] = !y ? std::nan("") : span > 0.0 ? sign[r] * y[impulse.first + r] / span : out.rotorTorque[r];
   }
   out.crankTorque = m.drivenRotor >= 0 ? out.rotorTorque[m.drivenRotor] : 0.0;
+  out.crankTorqueStepMean = m.drivenRotor >= 0 ? out.rotorTorqueStepMean[m.drivenRotor] : 0.0;
 }
 
 namespace {
@@ -104,7 +109,7 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
     if (c.rotor < 0) continue;
     out.rotorTorque[c.rotor] -= cross(c.rRotor, contactForce(c));
   }
-  finishRotorOutputs(m, d.rotorAngle, d.rotorRate, out);
+  finishRotorOutputs(m, d.rotorAngle, d.rotorRate, m.chainImpulse, rigid ? nullptr : y, out);
   // tensioner and span forces
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;

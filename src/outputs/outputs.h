@@ -17,6 +17,10 @@ struct Outputs {
   std::vector<double> rotorRate;    // (rotors) [rad/s]
   std::vector<double> rotorTorque;  // (rotors) [N m] chain (contact) torque on the rotor, output sign
   double crankTorque = 0.0;         // [N m] chain torque on the driven sprocket, + in running direction
+  // the same averaged since the step means' accumulators were last zeroed (model.h: ImpulseStates;
+  // at that instant itself the torque then); NaN with rigid contacts, which do not accumulate them
+  std::vector<double> rotorTorqueStepMean;  // (rotors) [N m] output sign
+  double crankTorqueStepMean = 0.0;         // [N m]
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
   double chamberPressure = 0.0;     // [Pa] gauge, a hydraulic tensioner's (0 for the spring-damper law)
   HydraulicFlows tensionerFlows;    // [m3/s] its check valve's, leak's and relief valve's
@@ -43,10 +47,11 @@ void computeOutputs(const Model& m, Data& d, const InputSignal& in, double t, co
                     Outputs& out, const RigidForces* rigid = nullptr);
 
 /// The rotor outputs from the rotors' angles and rates (math sense) and, in out.rotorTorque, the
-/// chain's torques on them (math sense): all turned into the output sense (outputs.h header), and
-/// the crankshaft torque. Shared by the link and span models.
+/// chain's torques on them (math sense): all turned into the output sense (outputs.h header), the
+/// crankshaft torque and the step means from the state y's accumulators (`impulse`; y nullptr:
+/// none, NaN). Shared by the link and span models.
 void finishRotorOutputs(const Model& m, const std::vector<double>& angle, const std::vector<double>& rate,
-                        Outputs& out);
+                        const ImpulseStates& impulse, const double* y, Outputs& out);
 
 /// Force at a span probe, interpolated between the two joints that bracket it.
 double spanForce(const Model& m, const Data& d, const SpanProbe& probe);

@@ -111,6 +111,7 @@ void DriveSystem::toleranceScales(double* scale) const {
   scale[m.stateInputWork] = 1.0;
   scale[m.stateDissipated] = 1.0;
   if (m.stateChamberOil >= 0) scale[m.stateChamberOil] = chamberOilScale(m.tensioner.hydraulic);
+  impulseToleranceScales(m.chainImpulse, static_cast<int>(m.rotors.size()), scale);
 }
 
 bool DriveSystem::healthy(double t, const double* y, Failure& why) noexcept {
@@ -288,6 +289,8 @@ void Simulation::restoreAt(long long k, const std::vector<double>& y) {
 }
 
 void Simulation::restart(double initialStep) {
+  const ImpulseStates& impulse = spanModel_ ? spanModel_->chainImpulse : model_->chainImpulse;
+  std::fill(y_.begin() + impulse.first, y_.begin() + impulse.time + 1, 0.0);  // the step means start over
   integrator_->setInitialStep(initialStep);
   integrator_->reset(time(), y_.data());
 }

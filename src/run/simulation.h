@@ -147,8 +147,10 @@ class Simulation {
   /// drive's estimated stable step to try (stepAdvice, under the options' stepName).
   double advanceTo(double t);
   /// Restarts the integrator from the current state and grid point (a communication step that
-  /// must not depend on the integrator's history: exact rollback, bit-identical instances).
-  /// `initialStep` is the first step adaptive methods try (0: their own estimate).
+  /// must not depend on the integrator's history: exact rollback, bit-identical instances), the
+  /// step means' accumulators zeroed (model.h: ImpulseStates; the outputs' step means then average
+  /// over the time advanced since). `initialStep` is the first step adaptive methods try (0:
+  /// their own estimate).
   void restart(double initialStep);
 
   /// The run's time grid: unit = the fixed step of fixed-step methods, kAdaptiveTimeQuantum for

@@ -15,10 +15,12 @@ namespace {
 
 using json = nlohmann::json;
 
-// /3: a hydraulic chamber's state in the link model is its oil content; /2 held its pressure
-// there (the same layout otherwise); /2 laid the state out component by component (model.h); /1
-// held 6 components per link
-constexpr const char* kSchema = "chaindrive.state/3";
+// /4: the step means' accumulators at the end (model.h: ImpulseStates; /3 and /2 are the same
+// without them, read with them zero); /3: a hydraulic chamber's state in the link model is its
+// oil content; /2 held its pressure there (the same layout otherwise); /2 laid the state out
+// component by component (model.h); /1 held 6 components per link
+constexpr const char* kSchema = "chaindrive.state/4";
+constexpr const char* kContentSchema = "chaindrive.state/3";
 constexpr const char* kPressureSchema = "chaindrive.state/2";
 
 std::string hex(double v) {
@@ -75,8 +77,11 @@ StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
     throw std::runtime_error(path + ": a state file of the earlier state layout (schema \"" +
                              std::string(kPressureSchema) + "\": the hydraulic chamber's pressure as its state); "
                              "this version reads \"" + std::string(kSchema) + "\" (its oil content): save the state again");
-  if (!pressureState && (!j.is_object() || j.value("schema", "") != kSchema))
+  const bool earlier = pressureState || (j.is_object() && j.value("schema", "") == kContentSchema);
+  if (!earlier && (!j.is_object() || j.value("schema", "") != kSchema))
     throw std::runtime_error(path + ": not a state file (schema must be \"" + std::string(kSchema) + "\")");
+  const int accumulators = earlier ? static_cast<int>(m.rotors.size()) + 1 : 0;  // (appended, zero)
+  states -= accumulators;
   const std::string fileFidelity = j.value("fidelity", "link");
   if (choiceOf<Fidelity>(fileFidelity) != fidelity)
     throw std::runtime_error(path + ": a state of the " + fileFidelity + " fidelity; this run is of the " +
@@ -93,6 +98,7 @@ StateSnapshot readStateFile(const std::string& path, const Model& m, int states,
     throw std::runtime_error(path + ": y must be an array of " + std::to_string(states) + " values");
   s.y.resize(y.size());
   for (std::size_t i = 0; i < y.size(); ++i) s.y[i] = fromHex(path, "y[" + std::to_string(i) + "]", y[i]);
+  s.y.resize(y.size() + accumulators, 0.0);
   return s;
 }
 

@@ -15,8 +15,9 @@ struct StateSnapshot {
   std::vector<double> y;
 };
 
-/// Writes the snapshot as JSON (schema "chaindrive.state/3"; "/2" is read where it is the same) with the drive's name, number of
-/// links and of states and the fidelity (written unless link), so that a
+/// Writes the snapshot as JSON (schema "chaindrive.state/4"; "/3" and "/2" are read where they
+/// are the same, the step means' accumulators zero) with the drive's name, number of links and of
+/// states and the fidelity (written unless link), so that a
 /// mismatching drive or fidelity is recognised on reading.
 void writeStateFile(const std::string& path, const Model& m, const StateSnapshot& s,
                     Fidelity fidelity = Fidelity::Link);

@@ -167,6 +167,7 @@ void spanForward(const SpanModel& m, SpanData& d, const InputSignal& in, double 
   ydot[m.stateInputWork] = d.powerInput;
   ydot[m.stateDissipated] = d.powerDissipated;
   if (m.stateChamberOil >= 0) ydot[m.stateChamberOil] = d.chamberOilRate;
+  accumulateImpulses(m.chainImpulse, d.chainTorque, ydot);
 }
 
 EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {

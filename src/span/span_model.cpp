@@ -391,6 +391,7 @@ void layOutState(const Model& m, SpanModel& sm) {
   sm.stateInputWork = idx++;
   sm.stateDissipated = idx++;
   sm.stateChamberOil = m.tensioner.hydraulicChamber() ? idx++ : -1;
+  sm.chainImpulse = layOutImpulseStates(idx, static_cast<int>(m.rotors.size()));
   sm.nStates = idx;
 }
 

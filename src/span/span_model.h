@@ -108,11 +108,12 @@ struct SpanModel {
   std::vector<std::string> notes;
 
   // state layout: the link model's rotor part (angle [, rate] per rotor) then input work and
-  // dissipated energy
+  // dissipated energy, the chamber's oil content and the step means' accumulators (model.h)
   int nStates = 0;
   std::vector<int> stateAngle, stateRate;  // (rotors); rate -1 when prescribed
   int stateInputWork = -1, stateDissipated = -1;
   int stateChamberOil = -1;  // a hydraulic tensioner's chamber: its oil content [m3] (-1: none)
+  ImpulseStates chainImpulse;
 };
 
 /// Assembles the span model of an assembled link model (which must outlive it), with its spans'

@@ -49,7 +49,7 @@ void computeSpanOutputs(const SpanModel& m, SpanData& d, const InputSignal& in, 
   const Model& lm = *m.links;
   out.time = t;
   out.rotorTorque = d.chainTorque;  // same size after the first call: no allocation
-  finishRotorOutputs(lm, d.rotorAngle, d.rotorRate, out);
+  finishRotorOutputs(lm, d.rotorAngle, d.rotorRate, m.chainImpulse, y, out);
   out.tensionerForce = d.tensionerForce;
   out.tensionerStroke = d.tensionerStroke;
   out.tensionerRate = d.tensionerRate;

@@ -45,6 +45,10 @@ int SpanSystem::jacobian(double t, const double* y, double* values) noexcept {
   const int n = model_.nStates;
   spanForward(model_, data_, in_, t, y, f0_.data());
   for (int c = 0; c < n; ++c) {
+    if (c >= model_.chainImpulse.first) {  // (nothing depends on the step means' accumulators)
+      std::fill_n(values + static_cast<std::size_t>(c) * n, n, 0.0);
+      continue;
+    }
     std::copy(y, y + n, yWork_.begin());
     const double h = 1e-7 * std::max(1.0, std::fabs(y[c]));
     yWork_[c] += h;
@@ -62,6 +66,7 @@ void SpanSystem::toleranceScales(double* scale) const {
   scale[model_.stateInputWork] = 1.0;
   scale[model_.stateDissipated] = 1.0;
   if (model_.stateChamberOil >= 0) scale[model_.stateChamberOil] = chamberOilScale(model_.links->tensioner.hydraulic);
+  impulseToleranceScales(model_.chainImpulse, static_cast<int>(model_.stateAngle.size()), scale);
 }
 
 bool SpanSystem::healthy(double t, const double* y, Failure& why) noexcept {

@@ -68,11 +68,20 @@ def test_a_brief_coupled_run_keeps_the_coupling_and_its_conventions():
         assert np.max(np.abs(turn - rec[f"{bank}.input.shaft.w"][2:] * h)) < 1e-12
         load = rec[f"primary.input.{shaft}.tau"][1:]
         assert np.mean(load) > 0.0
+        # the load held over a step: minus the bank's step-mean torque over the step before carried on
+        # half a step (2 m_k - m_k-1)
+        mean = rec[f"{bank}.shaft.tauMean"]
+        assert np.array_equal(rec[f"primary.input.{shaft}.tau"][3:], -(2.0 * mean[2:-1] - mean[1:-2]))
         cam = rec[f"{bank}.intakeCam.phi"][-1] / rec["primary.crankshaft.phi"][-1]
         assert cam == pytest.approx(0.5, rel=0.01)
     b = vengine.balances(rec, 0, len(rec["time"]))
     for shaft, _ in vengine.BANKS.values():
         assert b[shaft]["driftMax_deg"] < 0.1 and abs(b[shaft]["workError"]) < 0.05, b[shaft]
+
+
+def test_speed_first_with_the_step_mean_torque_is_refused():
+    line = one_error_line(*harness("v-engine", "--coupling", "speed-first")[::2])
+    assert "--torque extrapolated with --coupling speed-first" in line and "allowed: --torque sampled" in line, line
 
 
 def test_a_communication_step_that_splits_a_solver_step_is_refused():

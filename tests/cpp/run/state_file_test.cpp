@@ -51,6 +51,15 @@ std::string editedFile(const std::string& name, const std::function<void(json&)>
   return path;
 }
 
+// A file as the layout before the step means' accumulators wrote it: without them (model.h:
+// ImpulseStates, the last components), under `schema`.
+void asEarlierLayout(json& j, const Model& m, const char* schema) {
+  j["schema"] = schema;
+  const int without = m.chainImpulse.first;
+  j["y"].erase(j["y"].begin() + without, j["y"].end());
+  j["states"] = without;
+}
+
 // The message of the error readStateFile throws for `path` (empty if it throws none).
 std::string readError(const std::string& path) {
   try {
@@ -95,11 +104,24 @@ TEST(StateFile, PressureStateOfAHydraulicChamberIsRefused) {
   writeStateFile(path, spring, awkwardState(spring));
   json j;
   std::ifstream(path) >> j;
-  j["schema"] = "chaindrive.state/2";
+  asEarlierLayout(j, spring, "chaindrive.state/2");
   std::ofstream(path) << j.dump(1) << "\n";
   const StateSnapshot back = readStateFile(path, spring, spring.nStates);
   EXPECT_TRUE(sameBits(back.y[3], -0.0));
   EXPECT_EQ(back.y.size(), static_cast<std::size_t>(spring.nStates));
+}
+
+// A file of the layout before the step means' accumulators ("chaindrive.state/3": the same state
+// without them) reads with them zero, every other component to the bit.
+TEST(StateFile, StateWithoutTheImpulseAccumulatorsReadsWithThemZero) {
+  const Model& m = *defaultModel();
+  const StateSnapshot s = awkwardState(m);
+  const std::string path = editedFile("content_state_v3.json", [&](json& j) { asEarlierLayout(j, m, "chaindrive.state/3"); });
+  const StateSnapshot back = readStateFile(path, m, m.nStates);
+  ASSERT_EQ(back.y.size(), s.y.size());
+  for (int i = 0; i < m.chainImpulse.first; ++i) EXPECT_TRUE(sameBits(back.y[i], s.y[i])) << "y[" << i << "]";
+  for (int i = m.chainImpulse.first; i < m.nStates; ++i) EXPECT_EQ(back.y[i], 0.0) << "y[" << i << "]";
+  EXPECT_EQ(m.chainImpulse.time, m.nStates - 1);
 }
 
 TEST(StateFile, CorruptFilesAreRefusedNamingTheProblem) {
