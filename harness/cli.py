@@ -6,6 +6,7 @@
     python -m harness chaos          divergence rate of twin runs (harness/study/chaos/chaos.py)
     python -m harness fidelity       span model against link model, recommendation (harness/study/fidelity.py)
     python -m harness span-steps     the span model's step convergence (harness/study/span_steps.py)
+    python -m harness modes          the drive's modes, link against span, with intervals (harness/study/modes.py)
     python -m harness pulse-response the camshafts' pulse response, link against span (harness/study/pulse_response.py)
     python -m harness tensioner-study the hydraulic tensioner against the spring-damper law (harness/study/tensioner.py)
     python -m harness bench          integrator benchmark (harness/bench/benchmark.py)
@@ -58,6 +59,8 @@ COMMANDS = {
                    "behind its default step"),
     "drive-steps": ("harness.study.drive_steps", "every test drive at its own default step against half the step, "
                     "closed loop: blow-ups, energy balance, cycle statistics within the scatter"),
+    "modes": ("harness.study.modes", "the drive's modes (loaded sprockets in and out of phase, tension guide, "
+              "supply), link model against span model, with intervals over twin pairs"),
     "pulse-response": ("harness.study.pulse_response", "the camshafts' response to a torque pulse, link model "
                        "against span model: is there a modal damping to identify"),
     "tensioner-study": ("harness.study.tensioner", "the hydraulic tensioner against the spring-damper law at 1000, "

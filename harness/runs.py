@@ -19,9 +19,10 @@ def read_csv(path):
 
 def run(out_csv, rpm=3000.0, cycles=2.0, duration=None, integrator=None, rtol=None, step=None,
         output_step=1e-4, inputs_csv=None, loads=None, crank_vibration=None, drive=None, link=None,
-        preload=True, check=True, fidelity="link"):
+        preload=True, check=True, fidelity="link", initial_state=None, save_state=None):
     """Runs chaindrive-run; returns (returncode, stdout, parsed summary dict). Without integrator,
-    rtol or step: chaindrive-run's defaults (the fidelity's own, src/run/defaults.h)."""
+    rtol or step: chaindrive-run's defaults (the fidelity's own, src/run/defaults.h). initial_state,
+    save_state: state files to start from (the duration counts from its time) and to save the end in."""
     cmd = [paths.executable("chaindrive-run"), "--rpm", str(rpm), "--output-step", repr(output_step),
            "--out", str(out_csv), "--quiet", "--fidelity", fidelity]
     if integrator is not None:
@@ -43,6 +44,10 @@ def run(out_csv, rpm=3000.0, cycles=2.0, duration=None, integrator=None, rtol=No
         cmd += ["--link", str(link)]
     if not preload:
         cmd += ["--no-preload"]
+    if initial_state:
+        cmd += ["--initial-state", str(initial_state)]
+    if save_state:
+        cmd += ["--save-state", str(save_state)]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if check and p.returncode not in (0, 3):
         raise RuntimeError(f"chaindrive-run failed ({p.returncode}): {p.stderr.strip()}")

@@ -29,6 +29,16 @@ def is_hydraulic(drive):
     return drive.get("tensioner", {}).get("model", "spring-damper") == "hydraulic"
 
 
+# a hydraulic tensioner's gauge supply pressure where the drive gives none (src/description/
+# hydraulic_tensioner.h, HydraulicDesc::supplyPressure)
+SUPPLY_PRESSURE = 3e5  # [Pa]
+
+
+def supply_pressure(drive):
+    """The gauge supply pressure [Pa] of the drive's hydraulic tensioner (tensioner.hydraulic.supplyPressure)."""
+    return drive.get("tensioner", {}).get("hydraulic", {}).get("supplyPressure", SUPPLY_PRESSURE)
+
+
 def oil_temperature_range(drive):
     """(lowest, highest) oil temperature [K] of the drive's hydraulic tensioner: its oil law's range,
     where the FMU accepts the parameter tensioner.oilTemperature."""

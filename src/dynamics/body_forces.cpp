@@ -136,12 +136,15 @@ void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& pow
 void evaluateRotorForces(const Model& m, const InputValues& in, const double* cosA, const double* sinA,
                          const double* rate, const ChamberState& chamber, double* rotorGen, TensionerResult& tensioner,
                          double& powerInput, double& powerDissipated) {
-  // guides: pivot friction and weight
+  // guides: pivot friction, weight and an applied torque (in the guide's output sense)
   for (const GuideModel& g : m.guides) {
     if (g.rotor < 0) continue;
     const double w = rate[g.rotor];
     rotorGen[g.rotor] -= g.pivotDamping * w;
     powerDissipated += g.pivotDamping * w * w;
+    const double applied = m.rotorOutputSign[g.rotor] * in.loadTorque[g.rotor];
+    rotorGen[g.rotor] += applied;
+    powerInput += applied * w;
     if (g.mass > 0.0) {
       const Vec2 arm = rotate(g.centerOfMass - g.pivot, cosA[g.rotor], sinA[g.rotor]);
       rotorGen[g.rotor] += cross(arm, g.mass * m.gravity);

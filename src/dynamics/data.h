@@ -30,7 +30,9 @@ struct InputValues {
   double crankSpeed = 0.0;         // [rad/s] of the driven sprocket
   double supplyPressure = 0.0;     // [Pa] gauge, of the oil feeding a hydraulic tensioner
   double crankAcceleration = 0.0;  // [rad/s^2] (used by the acceleration-level contact methods)
-  std::vector<double> loadTorque;  // [N m] per rotor (only free sprockets use it)
+  std::vector<double> loadTorque;  // [N m] per rotor: a free sprocket's load, against its running
+                                   // direction; a pivoting guide's applied torque, in its output sense
+                                   // (model.h: rotorOutputSign; a study's pulse on the guide)
   double ratio = 0.0;              // a CVT's transmission ratio (its sheaves follow it; 0: the assembled one)
 };
 

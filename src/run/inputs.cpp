@@ -33,6 +33,28 @@ std::vector<std::string> splitCsv(const std::string& line) {
   }
   return out;
 }
+constexpr int kCrankColumn = -1, kSupplyColumn = -3;  // (>= 0: the rotor whose torque the column holds)
+
+// What each column of the header sets: the crankshaft's speed, a free sprocket's load, a pivoting
+// guide's torque, a hydraulic tensioner's supply pressure; anything else is refused naming what is.
+std::vector<int> columnRoles(const Model& m, const std::string& path, const std::vector<std::string>& header) {
+  const std::string crankName = m.drivenRotor >= 0 ? m.rotors[m.drivenRotor].name + ".w" : "";
+  const bool chamber = m.tensioner.hydraulicChamber();
+  std::vector<int> role(header.size(), -2);
+  for (std::size_t c = 1; c < header.size(); ++c) {
+    if (!crankName.empty() && header[c] == crankName) role[c] = kCrankColumn;
+    if (chamber && header[c] == "tensioner.supplyPressure") role[c] = kSupplyColumn;
+    for (std::size_t r = 0; r < m.rotors.size(); ++r)
+      if (!m.rotors[r].prescribed && header[c] == m.rotors[r].name + ".tau") role[c] = static_cast<int>(r);
+    if (role[c] == -2)
+      throw std::invalid_argument(path + ": column '" + header[c] + "' is unknown; allowed: " + crankName +
+                                  ", <free sprocket>.tau, <pivoting guide>.tau" +
+                                  (chamber ? ", tensioner.supplyPressure" : " (tensioner.supplyPressure: a hydraulic "
+                                                                            "tensioner's only)"));
+  }
+  return role;
+}
+
 }  // namespace
 
 TableInputs::TableInputs(const Model& m, const std::string& path) : supplyPressure_(m.tensioner.hydraulic.supplyPressure) {
@@ -49,17 +71,8 @@ TableInputs::TableInputs(const Model& m, const std::string& path) : supplyPressu
   }
   if (header.empty() || header[0] != "time")
     throw std::invalid_argument(path + ": the first non-comment line must be a header starting with 'time'");
-  const std::string crankName = m.drivenRotor >= 0 ? m.rotors[m.drivenRotor].name + ".w" : "";
-  std::vector<int> role(header.size(), -2);  // -1 crank, >= 0 rotor load
+  const std::vector<int> role = columnRoles(m, path, header);
   loads_.assign(m.rotors.size(), {});
-  for (std::size_t c = 1; c < header.size(); ++c) {
-    if (!crankName.empty() && header[c] == crankName) { role[c] = -1; continue; }
-    for (std::size_t r = 0; r < m.rotors.size(); ++r)
-      if (m.rotors[r].isSprocket && !m.rotors[r].prescribed && header[c] == m.rotors[r].name + ".tau") role[c] = static_cast<int>(r);
-    if (role[c] == -2)
-      throw std::invalid_argument(path + ": column '" + header[c] + "' is unknown; allowed: " + crankName +
-                                  " and <free sprocket>.tau");
-  }
   while (std::getline(in, line)) {
     ++lineNo;
     if (line.empty() || line[0] == '#') continue;
@@ -78,10 +91,12 @@ TableInputs::TableInputs(const Model& m, const std::string& path) : supplyPressu
     if (!time_.empty() && vals[0] < time_.back())
       throw std::invalid_argument(path + ":" + std::to_string(lineNo) + ": time decreases");
     time_.push_back(vals[0]);
-    for (std::size_t c = 1; c < cells.size(); ++c) (role[c] == -1 ? crank_ : loads_[role[c]]).push_back(vals[c]);
+    for (std::size_t c = 1; c < cells.size(); ++c)
+      (role[c] == kCrankColumn ? crank_ : role[c] == kSupplyColumn ? supply_ : loads_[role[c]]).push_back(vals[c]);
   }
   if (time_.size() < 1) throw std::invalid_argument(path + ": no data rows");
-  if (!crankName.empty() && crank_.empty()) throw std::invalid_argument(path + ": column '" + crankName + "' is missing");
+  if (m.drivenRotor >= 0 && crank_.empty())
+    throw std::invalid_argument(path + ": column '" + m.rotors[m.drivenRotor].name + ".w' is missing");
 }
 
 void TableInputs::evaluate(double t, InputValues& v) const {
@@ -98,7 +113,7 @@ void TableInputs::evaluate(double t, InputValues& v) const {
     w = dt > 0.0 ? (t - time_[k]) / dt : 1.0;
   }
   auto interp = [&](const std::vector<double>& s) { return w > 0.0 ? (1.0 - w) * s[k] + w * s[k + 1] : s[k]; };
-  v.supplyPressure = supplyPressure_;
+  v.supplyPressure = supply_.empty() ? supplyPressure_ : interp(supply_);
   if (!crank_.empty()) {
     v.crankSpeed = interp(crank_);
     v.crankAcceleration = (w > 0.0 && time_[k + 1] > time_[k]) ? (crank_[k + 1] - crank_[k]) / (time_[k + 1] - time_[k]) : 0.0;

@@ -31,7 +31,10 @@ class HarmonicInputs : public InputSignal {
 };
 
 /// Time series: linear interpolation, held constant outside the table.
-/// CSV: a header `time,<driven sprocket>.w,<sprocket>.tau,...` (SI units), '#' comment lines.
+/// CSV: a header `time,<driven sprocket>.w,<sprocket>.tau,...` (SI units), '#' comment lines;
+/// besides, `<pivoting guide>.tau` (a torque on the guide, positive in its output sense: the
+/// tension guide's towards the chain) and `tensioner.supplyPressure` (a hydraulic tensioner's
+/// gauge supply [Pa]; the drive's without the column): the excitations of the modes study.
 class TableInputs : public InputSignal {
  public:
   /// Throws std::invalid_argument naming the file, line and column on bad input.
@@ -44,6 +47,7 @@ class TableInputs : public InputSignal {
   std::vector<double> time_;
   std::vector<double> crank_;                 // empty if not given
   std::vector<std::vector<double>> loads_;    // per rotor, empty if not given
+  std::vector<double> supply_;                // empty if not given
 };
 
 }  // namespace chaindrive
