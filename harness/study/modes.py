@@ -67,6 +67,8 @@ SUPPLY_AFTER = 0.2                        # [s] simulated after the supply's ste
 SUPPLY_SETTLE = (0.15, 0.2)               # [s] after the step: the window of the response's final value
 SUPPLY_LOW_PASS = 200.0                   # [Hz] the chain's vibration left out of the supply's response
 FIDELITIES = ("link", "span")
+RINGING = 0.3                             # the largest damping ratio taken for a mode
+MIN_PERIODS = 2                           # of a mode within the fit's window
 
 
 @dataclasses.dataclass(frozen=True)
@@ -143,7 +145,9 @@ def fit_mode(t, responses, fitted=None):
     """The damped sinusoid common to the responses (name -> samples at t after the pulse) of the
     channels `fitted` (None: all) over FIT, each channel with its own slow drift (a quadratic in t,
     fitted with it): (frequency [Hz], decay rate [1/s], damping ratio, {name: (amplitude over the
-    largest, phase relative to the largest [deg])} of every channel at that frequency and decay)."""
+    largest, phase relative to the largest [deg])} of every channel at that frequency and decay,
+    whether the frequency ended at its search bound: two bins either side of the spectrum's peak;
+    there, no mode was found)."""
     from scipy.optimize import least_squares  # (here: scipy.optimize takes a while to import)
     window = (t >= FIT[0]) & (t <= FIT[1])
     tw = t[window] - FIT[0]
@@ -184,7 +188,9 @@ def fit_mode(t, responses, fitted=None):
     shape = {n: (float(abs(complex_amp[i]) / abs(complex_amp[ref])),
                  float(np.degrees(np.angle(complex_amp[i] / complex_amp[ref])))) for i, n in enumerate(names)}
     omega = 2.0 * math.pi * f
-    return float(f), float(rate), float(rate / math.hypot(rate, omega)), shape
+    lower, upper = max(f0 - 2.0 * bin_width, 1.0), f0 + 2.0 * bin_width
+    at_bound = min(abs(f - lower), abs(f - upper)) <= 1e-6 * f  # (the iterates stay strictly inside)
+    return float(f), float(rate), float(rate / math.hypot(rate, omega)), shape, at_bound
 
 
 def supply_response(t, force_change):
@@ -223,7 +229,23 @@ def ensemble_mode(t, pairs, fitted=None):
                         "phase_deg": jackknife(whole[3][c][1], [lo[3][c][1] for lo in left_out], degrees=True)}
                     for c in mean}
     out["coherent"] = float(coherent)
+    out["notAMode"] = not_a_mode(whole[0], whole[2], whole[4])
     return out
+
+
+def not_a_mode(frequency, damping_ratio, at_bound):
+    """Why a fit is no mode ("" when it is one): its frequency at the search bound; fewer than
+    MIN_PERIODS periods in the fit's window (the drift term mimics a slower one: a decay without
+    ringing fits at the spectrum's first bins); a damping ratio beyond RINGING (a decay the fit
+    dressed as a sinusoid: a known decay without ringing fits with 0.5-0.8)."""
+    lowest = MIN_PERIODS / (FIT[1] - FIT[0])
+    if at_bound:
+        return f"the fit's frequency {frequency:.1f} Hz at its search bound"
+    if frequency < lowest:
+        return f"{frequency:.1f} Hz, below the {lowest:.0f} Hz the fit's window resolves ({MIN_PERIODS} periods)"
+    if damping_ratio > RINGING:
+        return f"a decay, not a ringing (damping ratio {damping_ratio:.2f} at {frequency:.1f} Hz)"
+    return ""
 
 
 def ensemble_supply(t, force_changes):
@@ -404,6 +426,10 @@ def report_lines(args, results):
         for r in rows:
             m = r["modes"][name]
             shape = " | ".join(f"{cell(m['shape'][c]['ratio'], 2)}, {cell(m['shape'][c]['phase_deg'], 0)}" for c in channel_names)
+            if m["notAMode"]:
+                lines.append(f"| {r['rpm']:g} | {r['load_Nm']:g} | {r['fidelity']} | no mode: {m['notAMode']} | | "
+                             f"{m['coherent']:.2f} |" + " |" * len(channel_names))
+                continue
             lines.append(f"| {r['rpm']:g} | {r['load_Nm']:g} | {r['fidelity']} | {cell(m['frequency_Hz'], 1)} | "
                          f"{cell(m['dampingRatio'], 4)} | {m['coherent']:.2f} | {shape} |")
         lines.append("")

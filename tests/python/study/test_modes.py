@@ -64,7 +64,7 @@ def test_a_known_mode_and_its_shape_are_found_at_any_sampling_step(name, frequen
         assert abs(got_ratio["mean"] - amplitude) <= min(0.05 * amplitude, 2.0 * got_ratio["ci95"] + 0.005), (channel, found["shape"])
         phase_error = abs((got_phase["mean"] - phase + 180.0) % 360.0 - 180.0)
         assert phase_error <= min(5.0, 2.0 * got_phase["ci95"] + 0.5), (channel, found["shape"])
-    assert 0.3 < found["coherent"] < 1.0, found["coherent"]
+    assert 0.3 < found["coherent"] < 1.0 and not found["notAMode"], found
 
 
 @pytest.mark.parametrize("name", STEPS)
@@ -92,9 +92,21 @@ def test_the_fit_takes_the_mode_of_the_fitted_channel_and_the_shape_of_all():
     ring = 1e-3 * np.exp(-0.02 * 2.0 * math.pi * 600.0 * np.clip(t - start, 0.0, None)) * np.sin(2.0 * math.pi * 600.0 * (t - start))
     excited = dict(excited, **{"guide.phi": plain["guide.phi"] + np.where(t >= start, ring, 0.0)})
     ta, responses = modes.responses_of(t, excited, plain, start)
-    f, rate, ratio, shape = modes.fit_mode(ta, responses, ["guide.phi"])
-    assert f == pytest.approx(600.0, rel=0.005) and ratio == pytest.approx(0.02, rel=0.05)
+    f, rate, ratio, shape, at_bound = modes.fit_mode(ta, responses, ["guide.phi"])
+    assert f == pytest.approx(600.0, rel=0.005) and ratio == pytest.approx(0.02, rel=0.05) and not at_bound
     assert shape["guide.phi"][0] == 1.0 and shape["intake.timing"][0] < 0.2, shape
+
+
+@pytest.mark.parametrize("tau, noise", [(0.004, 1e-6), (0.004, 1e-5), (0.02, 1e-6)])
+def test_a_response_without_a_mode_is_not_reported_as_one(tau, noise):
+    """A slow decay and noise, no ringing: the fit ends at its search bound, below the frequency its
+    window resolves, or dresses the decay as a heavily damped sinusoid; either way it is no mode, and
+    says why."""
+    t = np.arange(0.0, modes.AFTER, 1e-4)
+    rng = np.random.default_rng(3)
+    responses = {"guide.phi": 1e-3 * np.exp(-t / tau) + noise * rng.standard_normal(len(t))}
+    f, _, ratio, _, at_bound = modes.fit_mode(t, responses)
+    assert modes.not_a_mode(f, ratio, at_bound), (f, ratio, at_bound)
 
 
 def test_the_jackknife_of_phases_about_180_degrees():
