@@ -376,7 +376,9 @@ def run(args):
                     modes=summarize(found[(f, r, l)], el)) for f, r, l in points]
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "modes.json").write_text(json.dumps(dict(drive=str(pathlib.Path(args.drive).resolve().relative_to(paths.ROOT)),
+    drive = pathlib.Path(args.drive).resolve()
+    (out / "modes.json").write_text(json.dumps(dict(drive=str(drive.relative_to(paths.ROOT) if drive.is_relative_to(paths.ROOT)
+                                                                else drive),
                                                     argv=args.argv, results=results), indent=1) + "\n")
     lines = report_lines(args, results)
     (out / "modes.md").write_text("\n".join(lines) + "\n")
