@@ -179,8 +179,8 @@ def fit_mode(t, responses, fitted=None):
         return (coef.T @ basis - x)[rows].ravel()
     bin_width = 1.0 / FIT[1]
     # (a negative rate is a response that grows over the window: reported as it is)
-    best = least_squares(residual, [r0, f0], bounds=([-np.inf, max(f0 - 2.0 * bin_width, 1.0)], [np.inf, f0 + 2.0 * bin_width]),
-                         x_scale="jac")
+    lower, upper = max(f0 - 2.0 * bin_width, 1.0), f0 + 2.0 * bin_width
+    best = least_squares(residual, [r0, f0], bounds=([-np.inf, lower], [np.inf, upper]), x_scale="jac")
     rate, f = best.x
     _, coef = amplitudes(best.x)
     complex_amp = coef[0] - 1j * coef[1]                               # a cos + b sin = Re(A e^(i w t))
@@ -188,7 +188,6 @@ def fit_mode(t, responses, fitted=None):
     shape = {n: (float(abs(complex_amp[i]) / abs(complex_amp[ref])),
                  float(np.degrees(np.angle(complex_amp[i] / complex_amp[ref])))) for i, n in enumerate(names)}
     omega = 2.0 * math.pi * f
-    lower, upper = max(f0 - 2.0 * bin_width, 1.0), f0 + 2.0 * bin_width
     at_bound = min(abs(f - lower), abs(f - upper)) <= 1e-6 * f  # (the iterates stay strictly inside)
     return float(f), float(rate), float(rate / math.hypot(rate, omega)), shape, at_bound
 
@@ -372,13 +371,13 @@ def run(args):
         for (drive, fidelity, rpm, load, pair), responses in pool.map(run_case, cases):
             found.setdefault((fidelity, rpm, load), []).append(responses)
     el = description.elements(args.drive)
-    results = [dict(point=f"{f}-{r:g}-{l:g}", fidelity=f, rpm=r, load_Nm=l, pairs=len(found[(f, r, l)]), runInDrift=settled[(f, r, l)][2],
-                    modes=summarize(found[(f, r, l)], el)) for f, r, l in points]
+    results = [dict(point=f"{f}-{r:g}-{l:g}", fidelity=f, rpm=r, load_Nm=l, pairs=len(found[(f, r, l)]),
+                    runInDrift=settled[(f, r, l)][2], modes=summarize(found[(f, r, l)], el)) for f, r, l in points]
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     drive = pathlib.Path(args.drive).resolve()
-    (out / "modes.json").write_text(json.dumps(dict(drive=str(drive.relative_to(paths.ROOT) if drive.is_relative_to(paths.ROOT)
-                                                                else drive),
+    shown = drive.relative_to(paths.ROOT) if drive.is_relative_to(paths.ROOT) else drive
+    (out / "modes.json").write_text(json.dumps(dict(drive=str(shown),
                                                     argv=args.argv, results=results), indent=1) + "\n")
     lines = report_lines(args, results)
     (out / "modes.md").write_text("\n".join(lines) + "\n")

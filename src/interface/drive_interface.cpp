@@ -223,7 +223,8 @@ std::vector<RotorRef> rotorOrder(const DriveDescription& desc, int prescribed) {
 
 // The value-reference scheme (docs/fmu.md): rotor k's block is 1000 + 10 k ... + 9 (slot 0 its
 // input, 1 its angle, 2 its speed or the prescribed sprocket's torque, 3 the chain's torque on a
-// free sprocket or the prescribed one's step mean, 4 a free sprocket's step mean); the first rotors keep the numbers the default drive's FMU always had: the inputs
+// free sprocket or the prescribed one's step mean, 4 a free sprocket's step mean); the first
+// rotors keep the numbers the default drive's FMU always had: the inputs
 // of rotors 0-2 are 1-3, the angle and speed (torque) of rotors 0-3 are 10-17. A span's force is
 // 2000 + its route element.
 unsigned rotorVr(int k, int slot) {
