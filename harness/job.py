@@ -53,6 +53,7 @@ import numpy as np
 
 from . import checks, cycle_stats, defaults, paths, runin
 from .drive.description import clearance_or_rigid, drive_json, is_hydraulic, oil_temperature_range
+from .drive import description
 from .drive.description import elements as drive_elements
 from .errors import UserError
 from .fmu import export, fmu
@@ -77,7 +78,7 @@ COMMUNICATION_STEP = 1e-4  # [s] the default communication step
 NEWMARK_GAMMA = 0.5  # the FMU parameter solver.newmarkGamma's default
 # the hydraulic tensioner's oil: the FMU's defaults (the input tensioner.supplyPressure and the
 # parameter tensioner.oilTemperature), an engine's oil gallery warm at part load
-SUPPLY_PRESSURE = 3e5        # [Pa] gauge
+SUPPLY_PRESSURE = description.SUPPLY_PRESSURE  # [Pa] gauge (the drive description's default)
 OIL_TEMPERATURE = 363.15     # [K] (90 C)
 SUPPLY_PRESSURE_RANGE = (-101325.0, 2e7)  # [Pa] gauge: what the FMU accepts, from vacuum to 200 bar
 BAR, ZERO_CELSIUS = 1e5, 273.15           # [Pa], [K]: the options' units

@@ -32,6 +32,7 @@ import time
 import numpy as np
 
 from . import checks, cycle_stats, paths, runin
+from .drive import description
 from .errors import UserError
 from .fmu import export, fmu
 from .tables import make_tables, valvetrain
@@ -61,7 +62,7 @@ def _ratios():
 # solver steps per 0.1 ms: at or below each drive's own (1e-4/35 and 1e-4/31, chaindrive-info
 # --defaults), so that communication steps of 0.1 ms / 2, / 4 and / 8 hold whole solver steps
 SOLVER_DIVISIONS = {"primary": 40, "bank": 32}
-SUPPLY_PRESSURE = 3.0e5     # [Pa] the gallery's oil pressure at every tensioner (the main job's)
+SUPPLY_PRESSURE = description.SUPPLY_PRESSURE  # [Pa] the gallery's oil pressure at every tensioner (the main job's)
 CAMS = ("intakeCam", "exhaustCam")
 SHAFT_RATIO, CAM_RATIO = _ratios()
 RUN_IN_MINIMUM = 8          # engine cycles of run-in at least (the main job's at 3000 rpm)

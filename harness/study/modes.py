@@ -258,44 +258,52 @@ def ensemble_supply(t, force_changes):
                 rise63_s=jackknife(rise, [r for _, r in left_out]))
 
 
+@dataclasses.dataclass(frozen=True)
+class Point:
+    """One drive, fidelity, speed and load, and what its runs share."""
+    drive: str
+    fidelity: str
+    rpm: float
+    load: float
+
+    def simulate(self, work, name, pair, excitation, duration, start=0.0, initial_state=None, save_state=None):
+        """chaindrive-run of pair `pair` with `excitation` (None: plain) from `start` (the state
+        `initial_state`'s time; 0: a fresh start) for `duration`; its record, inputs and outputs in
+        `work` under `name`."""
+        d = description.drive_json(self.drive)
+        el = description.elements(d)
+        inputs, out = pathlib.Path(work) / f"{name}-inputs.csv", pathlib.Path(work) / f"{name}.csv"
+        write_inputs(inputs, el, self.rpm, self.load, pair, excitation,
+                     description.supply_pressure(d) if el.hydraulic else None, start)
+        runs.run(out, rpm=self.rpm, duration=duration, output_step=OUTPUT_STEP, inputs_csv=inputs,
+                 fidelity=self.fidelity, drive=self.drive, initial_state=initial_state, save_state=save_state)
+        return runs.read_csv(out)
+
+
 def settle(case):
-    """The run-in of one (drive, fidelity, rpm, load, folder): RUN_IN_REVOLUTIONS at the plain inputs,
-    its end state saved in the folder; returns (case, the state file, its time, the tensioner force's
-    mean over the run-in's last quarter over the quarter before, - 1: how settled it is)."""
-    drive, fidelity, rpm, load, folder = case
-    d = description.drive_json(drive)
-    el = description.elements(d)
-    tag = f"{fidelity}-{rpm:g}-{load:g}"
-    inputs, out, state = (pathlib.Path(folder) / f"{tag}{x}" for x in ("-inputs.csv", ".csv", ".state.json"))
-    write_inputs(inputs, el, rpm, load, 0, None, description.supply_pressure(d) if el.hydraulic else None)
-    duration = RUN_IN_REVOLUTIONS * 60.0 / rpm
-    runs.run(out, rpm=rpm, duration=duration, output_step=OUTPUT_STEP, inputs_csv=inputs, fidelity=fidelity, drive=drive,
-             save_state=state)
-    record = runs.read_csv(out)
+    """The run-in of one (Point, folder): RUN_IN_REVOLUTIONS at the plain inputs, its end state saved
+    in the folder; returns (the point, the state file, its time, the tensioner force's mean over the
+    run-in's last quarter over the quarter before, - 1: how settled it is; None without a tensioner)."""
+    point, folder = case
+    tag = f"{point.fidelity}-{point.rpm:g}-{point.load:g}"
+    state = pathlib.Path(folder) / f"{tag}.state.json"
+    record = point.simulate(folder, tag, 0, None, RUN_IN_REVOLUTIONS * 60.0 / point.rpm, save_state=state)
     quarter = len(record["time"]) // 4
-    force = record["tensioner.F"] if "tensioner.F" in record else np.ones(4 * quarter)
-    drift = float(np.mean(force[-quarter:]) / np.mean(force[-2 * quarter:-quarter]) - 1.0)
-    return case, str(state), float(record["time"][-1]), drift
+    force = record.get("tensioner.F")
+    drift = None if force is None else float(np.mean(force[-quarter:]) / np.mean(force[-2 * quarter:-quarter]) - 1.0)
+    return point, str(state), float(record["time"][-1]), drift
 
 
 def run_case(case):
-    """One (drive, fidelity, rpm, load, pair, settled state, its time): from the state, its plain run
-    and one run per excitation; per excitation the response: (times from the pulse's end, {channel:
-    response}), the supply's (times from its step, the tensioner force's change)."""
-    drive, fidelity, rpm, load, pair, state, start = case
-    d = description.drive_json(drive)
-    el = description.elements(d)
-    supply = description.supply_pressure(d) if el.hydraulic else None
+    """One (Point, pair, settled state, its time): from the state, its plain run and one run per
+    excitation; per excitation the response: (times from the pulse's end, {channel: response}), the
+    supply's (times from its step, the tensioner force's change)."""
+    point, pair, state, start = case
+    el = description.elements(point.drive)
     found = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        work = pathlib.Path(tmp)
-
+    with tempfile.TemporaryDirectory() as work:
         def simulate(name, excitation, duration):
-            inputs, out = work / f"{name}-inputs.csv", work / f"{name}.csv"
-            write_inputs(inputs, el, rpm, load, pair, excitation, supply, start)
-            runs.run(out, rpm=rpm, duration=duration, output_step=OUTPUT_STEP, inputs_csv=inputs, fidelity=fidelity,
-                     drive=drive, initial_state=state)
-            return runs.read_csv(out)
+            return point.simulate(work, name, pair, excitation, duration, start, initial_state=state)
         longest = PULSE_TIME + (SUPPLY_AFTER if el.hydraulic else PULSE_LENGTH + AFTER)
         plain = simulate("plain", None, longest)
         for k, ex in enumerate(excitations(el)):
@@ -309,7 +317,7 @@ def run_case(case):
             else:
                 found[ex.name] = responses_of(excited["time"], channels(el, excited), channels(el, head),
                                               start + PULSE_TIME + PULSE_LENGTH)
-    return case[:5], found
+    return point, found
 
 
 def summarize(per_pair, el):
@@ -361,18 +369,18 @@ def check(ap, args):
 
 
 def run(args):
-    points = list(itertools.product(args.fidelities, args.rpm, args.loads))
+    points = [Point(args.drive, *p) for p in itertools.product(args.fidelities, args.rpm, args.loads)]
     found, settled = {}, {}
     with tempfile.TemporaryDirectory() as states, \
             concurrent.futures.ProcessPoolExecutor(min(args.workers, len(points) * args.replicas)) as pool:
-        for (_, fidelity, rpm, load, _), state, start, drift in pool.map(settle, [(args.drive, *p, states) for p in points]):
-            settled[(fidelity, rpm, load)] = (state, start, drift)
-        cases = [(args.drive, *p, k, *settled[p][:2]) for p in points for k in range(args.replicas)]
-        for (drive, fidelity, rpm, load, pair), responses in pool.map(run_case, cases):
-            found.setdefault((fidelity, rpm, load), []).append(responses)
+        for point, state, start, drift in pool.map(settle, [(p, states) for p in points]):
+            settled[point] = (state, start, drift)
+        cases = [(p, k, *settled[p][:2]) for p in points for k in range(args.replicas)]
+        for point, responses in pool.map(run_case, cases):
+            found.setdefault(point, []).append(responses)
     el = description.elements(args.drive)
-    results = [dict(point=f"{f}-{r:g}-{l:g}", fidelity=f, rpm=r, load_Nm=l, pairs=len(found[(f, r, l)]),
-                    runInDrift=settled[(f, r, l)][2], modes=summarize(found[(f, r, l)], el)) for f, r, l in points]
+    results = [dict(point=f"{p.fidelity}-{p.rpm:g}-{p.load:g}", fidelity=p.fidelity, rpm=p.rpm, load_Nm=p.load,
+                    pairs=len(found[p]), runInDrift=settled[p][2], modes=summarize(found[p], el)) for p in points]
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     drive = pathlib.Path(args.drive).resolve()
@@ -401,7 +409,8 @@ def report_lines(args, results):
              f"drift) on the mean of {args.replicas} twin pairs' responses; +- the jackknife's 95 % half-width over the "
              "pairs; `coherent`: the mean's share of the pairs' response energy (1: no chaos, "
              f"1/{args.replicas}: nothing but chaos). A negative damping ratio: the response grows over the window.", ""]
-    drifts = ", ".join(f"{r['fidelity']} {r['rpm']:g} rpm {r['load_Nm']:g} N m {r['runInDrift']:+.2%}" for r in results)
+    drifts = ", ".join(f"{r['fidelity']} {r['rpm']:g} rpm {r['load_Nm']:g} N m " +
+                       (f"{r['runInDrift']:+.2%}" if r["runInDrift"] is not None else "(no tensioner)") for r in results)
     lines += [f"Each point's pulses come {PULSE_TIME * 1e3:g} ms after a run-in of {RUN_IN_REVOLUTIONS} crankshaft "
               "revolutions; the tensioner force's mean over its last quarter against the quarter before (how settled "
               f"the drive was): {drifts}.", ""]
