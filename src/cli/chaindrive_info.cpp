@@ -16,6 +16,7 @@
 #include "run/defaults.h"
 #include "run/drive_defaults.h"
 #include "run/simulation.h"
+#include "run/span_damping.h"
 #include "span/calibration_cache.h"
 
 using namespace chaindrive;
@@ -200,6 +201,9 @@ void printCalibration(const Model& m, const std::string& out) {
   std::string file;
   if (out.empty()) span::calibrateSpanModel(sm, &fromCache, &file);
   else fromCache = span::writeCalibrationFile(sm, out) == span::CalibrationOrigin::Cache;
+  // the spans' damping where the drive asks for it identified (run/span_damping.h)
+  if (m.description.spanModel.damping == SpanModelDesc::Source::Identified)
+    calibrateSpanDamping(std::shared_ptr<const Model>(&m, [](const Model*) {}), sm);
   const double cpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC - wall0;
   for (const std::string& note : sm.notes)
     if (note.rfind("calibration: ", 0) == 0) std::printf("%s\n", note.c_str());

@@ -307,6 +307,34 @@ void readClosure(Fields& top, DriveDescription& desc) {
   desc.closure = c;
 }
 
+// A field that is a number in [lo, hi] (`given`) or one of two words: `off` (the default) or
+// "identified".
+SpanModelDesc::Source spanSource(Fields& f, const std::string& key, const char* off, double lo, double hi,
+                                 const char* unit, double& given) {
+  const Fields::json* v = f.raw(key);
+  if (!v) return SpanModelDesc::Source::Off;
+  if (v->is_number()) {
+    given = f.number(key, lo, hi, std::nullopt, unit, true);
+    return SpanModelDesc::Source::Given;
+  }
+  if (!v->is_string()) {
+    f.problem(f.at(key), std::string("must be a number (") + unit + ") or \"" + off + "\" or \"identified\"");
+    return SpanModelDesc::Source::Off;
+  }
+  return f.string(key, {off, "identified"}, std::nullopt) == "identified" ? SpanModelDesc::Source::Identified
+                                                                           : SpanModelDesc::Source::Off;
+}
+
+// The span fidelity's dynamics (optional section).
+void readSpanModel(Fields& top, DriveDescription& desc) {
+  Fields f = top.object("spanModel", false);
+  if (!f.valid()) return;
+  SpanModelDesc& s = desc.spanModel;
+  s.guideSeat = spanSource(f, "guideSeat", "none", 0.0, 1e9, "N m/rad", s.guideSeatStiffness);
+  s.damping = spanSource(f, "damping", "joints", 0.0, 1e3, "", s.dampingScale);
+  f.finish();
+}
+
 // The measured spans and the monitored link (optional section).
 void readMeasurement(Fields& top, DriveDescription& desc) {
   Fields f = top.object("measurement", false);
@@ -502,6 +530,7 @@ DriveDescription parseDriveDescription(std::string_view text) {
   readContact(top, desc);
   readClosure(top, desc);
   readMeasurement(top, desc);
+  readSpanModel(top, desc);
   top.finish();
 
   // cross-checks: names in the route and spans, the monitored link, the closing element

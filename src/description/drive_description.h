@@ -128,6 +128,18 @@ struct ClosureDesc {
   double rangeMin = 0.0, rangeMax = 0.0;  // [rad] or [m]
 };
 
+/// The span fidelity's dynamics beyond the statics' laws (docs/fidelities.md#calibrated-dynamics):
+/// the tension guide's seat on its chain (span_model.h, GuideSeat) and the spans' damping. Off by
+/// default: on the drives measured they put the span model's modes on the link model's without
+/// bringing its cycle means nearer (docs/study/span_dynamics.md).
+struct SpanModelDesc {
+  enum class Source { Off, Identified, Given };
+  Source guideSeat = Source::Off;  // off: the chain on the guide's face moves with it
+  double guideSeatStiffness = 0.0;  // [N m/rad] when given
+  Source damping = Source::Off;     // off: the joints' dampers in series
+  double dampingScale = 1.0;        // when given: the spans' dampers over the joints' in series
+};
+
 struct MeasurementDesc {
   std::vector<std::string> tightSpan;  // two consecutive route elements; empty: none
   std::vector<std::string> slackSpan;
@@ -150,6 +162,7 @@ struct DriveDescription {
   ContactDesc contact;
   std::optional<ClosureDesc> closure;  // default: the tensioner's guide
   MeasurementDesc measurement;
+  SpanModelDesc spanModel;
   std::string canonicalText;     // the description as parsed, in one canonical JSON form (a cache key's part)
 
   int sprocketIndex(std::string_view name) const;  // -1 if none

@@ -11,6 +11,7 @@
 #include "dynamics/iteration_matrix.h"
 #include "dynamics/joint_forces.h"
 #include "dynamics/link_loops.h"
+#include "run/span_damping.h"
 #include "span/calibration_cache.h"
 #include "span/span_outputs.h"
 
@@ -255,8 +256,14 @@ void Simulation::buildLinkModel(JointModel joints) {
 // The span model: no contacts (the chain is spans), its stiffness from the journal bearings, its
 // spans' laws from the options' calibration file, the cache or the link model's statics.
 void Simulation::buildSpanModel() {
-  spanModel_ = std::make_unique<span::SpanModel>(span::assembleSpanModel(*model_, false));
-  span::calibrateSpanModel(*spanModel_, options_.spanCalibrationFile);
+  if (options_.spanModel) {
+    spanModel_ = options_.spanModel;
+  } else {
+    auto sm = std::make_shared<span::SpanModel>(span::assembleSpanModel(*model_, false));
+    span::calibrateSpanModel(*sm, options_.spanCalibrationFile);
+    calibrateSpanDamping(model_, *sm);
+    spanModel_ = sm;
+  }
   spanSystem_ = std::make_unique<span::SpanSystem>(*spanModel_, *inputs_, options_.health);
   integrator_ = makeIntegrator(*spanSystem_, options_.integrator);
   outSpanData_ = std::make_unique<span::SpanData>(*spanModel_);

@@ -37,6 +37,8 @@ struct SimulationOptions {
   std::string stepName = "solver.step";  // the fixed step's setting as a blow-up's advice names it
   bool blowUpAdvice = true;         // a blow-up's failure offers a stable step (false: the step
                                     // probe's own runs, run/step_probe.h, whose advice would probe)
+  std::shared_ptr<const span::SpanModel> spanModel;  // span fidelity: this model (of the same link
+                                                     // model) instead of one assembled and calibrated
   std::string spanCalibrationFile;  // span fidelity: a read-only calibration looked in before the
                                     // cache (an FMU's resources/span_calibration.json; taken when its
                                     // key is the drive's: span/calibration_cache.h); "": none
@@ -187,7 +189,7 @@ class Simulation {
   std::unique_ptr<DriveSystem> system_;              // compliant contacts
   std::shared_ptr<RigidContactDrive> rigid_;         // rigid contacts
   RigidIntegrator* rigidIntegrator_ = nullptr;       // owned by integrator_
-  std::unique_ptr<span::SpanModel> spanModel_;       // span fidelity
+  std::shared_ptr<const span::SpanModel> spanModel_;  // span fidelity
   std::unique_ptr<span::SpanSystem> spanSystem_;
   std::unique_ptr<span::SpanData> outSpanData_;
   std::unique_ptr<Integrator> integrator_;

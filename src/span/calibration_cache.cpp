@@ -23,7 +23,7 @@ namespace chaindrive::span {
 namespace {
 
 using json = nlohmann::json;
-constexpr int kFormat = 1;  // of the cache file
+constexpr int kFormat = 2;  // of the cache file (2: the guide seats)
 
 std::uint64_t fnv1a(std::string_view text) {
   std::uint64_t h = 14695981039346656037ull;
@@ -31,11 +31,7 @@ std::uint64_t fnv1a(std::string_view text) {
   return h;
 }
 
-std::string hex(double x) {
-  char s[40];
-  std::snprintf(s, sizeof s, "%a", x);
-  return s;
-}
+std::string hex(double x) { return hexNumber(x); }
 
 std::string bits(double x) {
   std::uint64_t b;
@@ -53,16 +49,19 @@ json hexArray(const std::vector<double>& v) {
 
 std::vector<double> fromHex(const json& a) {
   std::vector<double> v;
-  for (const json& x : a) v.push_back(std::strtod(x.get<std::string>().c_str(), nullptr));
+  for (const json& x : a) v.push_back(fromHexNumber(x.get<std::string>()));
   return v;
 }
 
 json toJson(const SpanCalibration& c, const std::string& key) {
-  json laws = json::array();
+  json laws = json::array(), seats = json::array();
   for (const EngagementLaw& law : c.laws)
     laws.push_back({{"stretch_m", hexArray(law.stretch)}, {"tension_N", hexArray(law.tension)},
                     {"energy_J", hexArray(law.energy)}});
-  return {{"format", kFormat}, {"key", key}, {"laws", laws}, {"poses", c.poses}, {"posesRejected", c.posesRejected},
+  for (const SeatIdentification& s : c.seats)
+    seats.push_back(hexArray({s.seat.stiffness, s.seat.torque0, s.seat.spanStiffness, s.linkStiffness,
+                              s.spanStiffness, s.linkDamping, s.spanDamping, s.tensionerStiffness}));
+  return {{"format", kFormat}, {"key", key}, {"laws", laws}, {"seats", seats}, {"poses", c.poses}, {"posesRejected", c.posesRejected},
           {"residualRms_m", hexArray(c.residualRms)}, {"residualMax_m", hexArray(c.residualMax)},
           {"leverRatioMin", hexArray(c.leverRatioMin)}, {"leverRatioMax", hexArray(c.leverRatioMax)},
           {"cpuSeconds", c.cpuSeconds}};
@@ -70,7 +69,8 @@ json toJson(const SpanCalibration& c, const std::string& key) {
 
 // The calibration in the file, if it is one of this key for this many spans; else why not ("" when
 // it is).
-std::string readCalibration(const std::string& file, const std::string& key, std::size_t spans, SpanCalibration& c) {
+std::string readCalibration(const std::string& file, const std::string& key, std::size_t spans, std::size_t tables,
+                            SpanCalibration& c) {
   std::ifstream in(utf8Path(file), std::ios::binary);
   if (!in) return "no such file, or not readable";
   try {
@@ -84,6 +84,13 @@ std::string readCalibration(const std::string& file, const std::string& key, std
     for (const json& law : j.at("laws"))
       c.laws.push_back(EngagementLaw{fromHex(law.at("stretch_m")), fromHex(law.at("tension_N")),
                                      fromHex(law.at("energy_J"))});
+    for (const json& seat : j.at("seats")) {  // (the order toJson writes)
+      const std::vector<double> v = fromHex(seat);
+      if (v.size() != 8) return "a seat of " + std::to_string(v.size()) + " numbers, not 8";
+      c.seats.push_back(SeatIdentification{GuideSeat{v[0], v[1], v[2]}, v[3], v[4], v[5], v[6], v[7]});
+      if (c.seats.size() > tables) return std::to_string(c.seats.size()) + " seats for " + std::to_string(tables) +
+                                          " pivoting guides";
+    }
     c.poses = j.at("poses");
     c.posesRejected = j.at("posesRejected");
     c.residualRms = fromHex(j.at("residualRms_m"));
@@ -99,6 +106,14 @@ std::string readCalibration(const std::string& file, const std::string& key, std
 }
 
 }  // namespace
+
+std::string hexNumber(double x) {
+  char s[40];
+  std::snprintf(s, sizeof s, "%a", x);
+  return s;
+}
+
+double fromHexNumber(const std::string& text) { return std::strtod(text.c_str(), nullptr); }
 
 // Written beside and renamed into place: an instance reading meanwhile sees the old file or the new.
 bool writeCacheFile(const std::string& dir, const std::string& file, const std::string& text) {
@@ -149,7 +164,7 @@ namespace {
 CalibrationOrigin calibrate(SpanModel& sm, const std::string& file, SpanCalibration& c, std::string* path) {
   const std::string key = calibrationKey(*sm.links);
   if (!file.empty()) {
-    const std::string why = readCalibration(file, key, sm.spans.size(), c);
+    const std::string why = readCalibration(file, key, sm.spans.size(), sm.tables.size(), c);
     if (why.empty()) {
       applyCalibration(sm, c);
       for (const std::string& line : describeCalibration(sm, c)) sm.notes.push_back("calibration: " + line);
@@ -161,7 +176,7 @@ CalibrationOrigin calibrate(SpanModel& sm, const std::string& file, SpanCalibrat
   }
   const std::string dir = calibrationCacheDir();
   const std::string cacheFile = dir.empty() ? "" : dir + "/span-" + key + ".json";
-  const bool cached = !cacheFile.empty() && readCalibration(cacheFile, key, sm.spans.size(), c).empty();
+  const bool cached = !cacheFile.empty() && readCalibration(cacheFile, key, sm.spans.size(), sm.tables.size(), c).empty();
   if (!cached) {
     try {
       c = identifySpanLaws(sm);

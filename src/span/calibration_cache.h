@@ -20,6 +20,10 @@ namespace chaindrive::span {
 /// The cache key of a link model's calibration: its description and the code, hashed.
 std::string calibrationKey(const Model& m);
 
+/// A number in hexadecimal floating point (the cache's: read back to the bit), and back.
+std::string hexNumber(double x);
+double fromHexNumber(const std::string& text);
+
 /// The cache folder ("" when there is none).
 std::string calibrationCacheDir();
 

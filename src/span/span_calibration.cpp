@@ -251,12 +251,23 @@ SpanCalibration identifySpanLaws(const SpanModel& sm, const std::vector<std::vec
   c.residualRms.resize(ns);
   c.residualMax.resize(ns);
   for (std::size_t i = 0; i < ns; ++i) c.laws.push_back(fitLaw(T[i], e[i], c.residualRms[i], c.residualMax[i]));
+  SpanModel withLaws = sm;  // the seats stand in series with the spans' laws
+  applyCalibration(withLaws, c);
+  c.seats = identifyGuideSeats(withLaws);
   c.cpuSeconds = static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
   return c;
 }
 
 void applyCalibration(SpanModel& sm, const SpanCalibration& c) {
   for (std::size_t i = 0; i < sm.spans.size(); ++i) sm.spans[i].engagement = c.laws[i];
+  // the seats where the drive asks for them (description: spanModel.guideSeat)
+  const SpanModelDesc& want = sm.links->description.spanModel;
+  sm.seats.assign(sm.tables.size(), GuideSeat{});
+  if (want.guideSeat == SpanModelDesc::Source::Off) return;
+  for (std::size_t t = 0; t < c.seats.size() && t < sm.tables.size(); ++t) {
+    sm.seats[t] = c.seats[t].seat;
+    if (want.guideSeat == SpanModelDesc::Source::Given) sm.seats[t].stiffness = want.guideSeatStiffness;
+  }
 }
 
 std::vector<std::string> describeCalibration(const SpanModel& sm, const SpanCalibration& c) {
@@ -285,6 +296,7 @@ std::vector<std::string> describeCalibration(const SpanModel& sm, const SpanCali
                   sm.links->rotors[sm.tables[g].rotor].name.c_str(), c.leverRatioMin[g], c.leverRatioMax[g]);
     lines.push_back(line);
   }
+  for (std::size_t t = 0; t < c.seats.size(); ++t) lines.push_back(describeSeat(sm, static_cast<int>(t), c.seats[t]));
   return lines;
 }
 

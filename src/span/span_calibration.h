@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "span/seat_calibration.h"
 #include "span/span_model.h"
 
 namespace chaindrive::span {
@@ -25,6 +26,7 @@ struct SpanCalibration {
   // per pivoting guide: the link model's chain torque on it over the span model's at the same
   // tensions and pose (1: the span model's guide geometry holds), smallest and largest
   std::vector<double> leverRatioMin, leverRatioMax;
+  std::vector<SeatIdentification> seats;  // (guide tables) identifyGuideSeats, with the laws
   double cpuSeconds = 0.0;          // of the identification
 };
 
@@ -60,7 +62,7 @@ SpanCalibration identifySpanLaws(const SpanModel& sm);
 /// The same at the poses of `loads` (rows as calibrationLoads gives them).
 SpanCalibration identifySpanLaws(const SpanModel& sm, const std::vector<std::vector<double>>& loads);
 
-/// Puts the laws into the span model.
+/// Puts the laws and the seats into the span model.
 void applyCalibration(SpanModel& sm, const SpanCalibration& c);
 
 /// Lines describing a calibration (the laws' nodes, residuals, lever ratios, cost).

@@ -18,6 +18,8 @@ SpanData::SpanData(const SpanModel& m) {
   rotorSin.assign(nr, 0.0);
   chainTorque.assign(nr, 0.0);
   rotorGen.assign(nr, 0.0);
+  faceAngle.assign(m.tables.size(), 0.0);
+  faceRate.assign(m.tables.size(), 0.0);
   spans.resize(m.spans.size());
   for (std::size_t i = 0; i < m.spans.size(); ++i) spans[i].factor.assign(m.spans[i].parts.size(), 1.0);
 }
@@ -61,8 +63,9 @@ void rotorKinematics(const SpanModel& m, SpanData& d, const double* y) {
   }
 }
 
-// Stretch of span i and its rate; the end sprockets' effective radii and the guide table's
-// torque coefficients for its loads.
+// Stretch of span i and its rate at its pivoting guide's face angle and rate (d.faceAngle,
+// d.faceRate); the end sprockets' effective radii and the guide table's torque coefficients for
+// its loads.
 void spanKinematics(const SpanModel& m, SpanData& d, int i) {
   const Model& lm = *m.links;
   const Span& sp = m.spans[i];
@@ -74,36 +77,37 @@ void spanKinematics(const SpanModel& m, SpanData& d, int i) {
   st.speedFrom = st.radiusFrom * sense * d.rotorRate[sp.from.rotor];
   st.speedTo = st.radiusTo * sense * d.rotorRate[sp.to.rotor];
   TableValue g{sp.length0, 0.0, 0.0, 0.0};
-  if (sp.table >= 0) g = lookUp(m.tables[sp.table], d.rotorAngle[m.tables[sp.table].rotor]);
+  if (sp.table >= 0) g = lookUp(m.tables[sp.table], d.faceAngle[sp.table]);
   st.guideTorqueIn = g.torqueIn;
   st.guideTorqueOut = g.torqueOut;
+  st.slope = g.slope;
   st.stretch = g.length - sp.length0 - (sA - sB);
-  st.stretchRate = (sp.table >= 0 ? g.slope * d.rotorRate[m.tables[sp.table].rotor] : 0.0) -
-                   (st.speedFrom - st.speedTo);
+  st.stretchRate = (sp.table >= 0 ? g.slope * d.faceRate[sp.table] : 0.0) - (st.speedFrom - st.speedTo);
 }
 
-// The spans' spring tensions: the engagement laws (span_calibration.h), the joints' in series
-// without one, or prescribed (identification).
-void springTensions(const SpanModel& m, SpanData& d) {
-  for (std::size_t i = 0; i < m.spans.size(); ++i) {
-    const Span& sp = m.spans[i];
-    SpanState& st = d.spans[i];
-    const double spring = !d.prescribedTension.empty() ? d.prescribedTension[i]
-                          : sp.engagement.empty()       ? sp.stiffness * st.stretch
-                                                        : sp.engagement.tensionAt(st.stretch);
-    st.tension = spring + (d.quasiStatic ? 0.0 : sp.damping * st.stretchRate);
+// Span i's spring tension: its engagement law (span_calibration.h), the joints' in series
+// without one, or prescribed (identification); its slope by the stretch into `slope` [N/m].
+double springTension(const SpanModel& m, const SpanData& d, int i, double& slope) {
+  const Span& sp = m.spans[i];
+  const double e = d.spans[i].stretch;
+  if (!d.prescribedTension.empty()) {
+    slope = 0.0;
+    return d.prescribedTension[i];
   }
+  if (sp.engagement.empty()) {
+    slope = sp.stiffness;
+    return sp.stiffness * e;
+  }
+  slope = sp.engagement.slopeAt(e);
+  return sp.engagement.tensionAt(e);
 }
 
-// The tension's distribution over the guides of span i; the torques on its end sprockets and on
-// its pivoting guide; the power its damper and guide friction dissipate.
-void spanLoads(const SpanModel& m, SpanData& d, int i) {
-  const Model& lm = *m.links;
+// The tension's distribution over the guides of span i (the tension above the centrifugal part
+// grows over each guide by its capstan factor; the spring holds the length-weighted mean) and the
+// spans' torque on its pivoting guide's face.
+void distributeTension(const SpanModel& m, SpanData& d, int i) {
   const Span& sp = m.spans[i];
   SpanState& st = d.spans[i];
-  const double sense = lm.sense;
-  // the tension above the centrifugal part grows over each guide by its capstan factor; the
-  // spring holds the length-weighted mean
   st.speed = 0.5 * (st.speedFrom + st.speedTo);
   st.centrifugal = m.chainDensity * st.speed * st.speed;
   const double mu = m.guideFriction * st.speed / std::sqrt(st.speed * st.speed +
@@ -115,31 +119,102 @@ void spanLoads(const SpanModel& m, SpanData& d, int i) {
   }
   st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * sp.partsLength / weighted;
   st.tensionTo = st.partTension(static_cast<int>(sp.parts.size()) - 1);
+  st.faceTorque = 0.0;
+  if (sp.table >= 0) {
+    const int k = sp.tableGuide;
+    const double over = st.tensionFrom - st.centrifugal;
+    st.faceTorque = st.guideTorqueIn * over * st.factor[k] + st.guideTorqueOut * over * st.factor[k + 1];
+  }
+}
+
+// Span i at its face's angle and rate: kinematics, tension (spring and damper), distribution.
+void spanAtFace(const SpanModel& m, SpanData& d, int i) {
+  spanKinematics(m, d, i);
+  double slope = 0.0;
+  SpanState& st = d.spans[i];
+  st.tension = springTension(m, d, i, slope) + (d.quasiStatic ? 0.0 : m.spans[i].damping * st.stretchRate);
+  distributeTension(m, d, i);
+}
+
+// Span i whose guide sits on a seat (GuideSeat): the face angle chi where the spans' torque on
+// the face equals the seat's, torque0 + k (chi - psi), by the secant method from chi = psi (the
+// same start every time: the same bits whatever came before), its first step on the slope
+// -(k + the spans' identified stiffness). The face's rate is the one that keeps that balance in
+// the linear spring's terms, chi' = (k psi' + k_e l' dv) / (k + k_e l'^2): the guide's rate and
+// the chain's speed difference dv over the span shared between the seat and the span's stretch
+// (k_e the law's slope, l' the table's).
+void seatFace(const SpanModel& m, SpanData& d, int i) {
+  constexpr int kMaxIterations = 30;
+  constexpr double kTolerance = 1e-13;  // [rad]
+  const int t = m.spans[i].table;
+  const GuideSeat& seat = m.seats[t];
+  const int r = m.tables[t].rotor;
+  SpanState& st = d.spans[i];
+  const double psi = d.rotorAngle[r];
+  double chi = psi, chiBefore = psi, imbalanceBefore = 0.0;
+  for (int it = 0;; ++it) {
+    d.faceAngle[t] = chi;
+    d.faceRate[t] = d.rotorRate[r];
+    spanKinematics(m, d, i);
+    double ke = 0.0;
+    const double spring = springTension(m, d, i, ke);
+    const double dv = st.speedFrom - st.speedTo;
+    d.faceRate[t] = (seat.stiffness * d.rotorRate[r] + ke * st.slope * dv) / (seat.stiffness + ke * st.slope * st.slope);
+    st.stretchRate = st.slope * d.faceRate[t] - dv;
+    st.tension = spring + (d.quasiStatic ? 0.0 : m.spans[i].damping * st.stretchRate);
+    distributeTension(m, d, i);
+    const double imbalance = st.faceTorque - seat.torque0 - seat.stiffness * (chi - psi);
+    const double slope = it > 0 && chi != chiBefore ? (imbalance - imbalanceBefore) / (chi - chiBefore)
+                                                    : -(seat.stiffness + seat.spanStiffness);
+    const double step = -imbalance / slope;
+    if (std::fabs(step) <= kTolerance) break;
+    if (it == kMaxIterations) {  // (SpanSystem::rhs stops the run naming the seat)
+      d.seatUnsolved = true;
+      break;
+    }
+    chiBefore = chi, imbalanceBefore = imbalance;
+    chi += step;
+  }
+}
+
+// The torques of span i on its end sprockets and on its pivoting guide (through the face); the
+// power its damper and guide friction dissipate.
+void spanLoads(const SpanModel& m, SpanData& d, int i) {
+  const Model& lm = *m.links;
+  const Span& sp = m.spans[i];
+  const SpanState& st = d.spans[i];
+  const double sense = lm.sense;
   // sprockets: the chain pulls the leaving end forwards, the arriving end backwards
   d.chainTorque[sp.from.rotor] += sense * st.tensionFrom * st.radiusFrom;
   d.chainTorque[sp.to.rotor] -= sense * st.tensionTo * st.radiusTo;
   d.powerDissipated += d.quasiStatic ? 0.0 : sp.damping * st.stretchRate * st.stretchRate;
   for (std::size_t k = 0; k + 1 < sp.parts.size(); ++k)
     d.powerDissipated += (st.partTension(static_cast<int>(k) + 1) - st.partTension(static_cast<int>(k))) * st.speed;
-  if (sp.table >= 0) {
-    const int k = sp.tableGuide;
-    const double over = st.tensionFrom - st.centrifugal;
-    d.chainTorque[m.tables[sp.table].rotor] += st.guideTorqueIn * over * st.factor[k] +
-                                               st.guideTorqueOut * over * st.factor[k + 1];
-  }
+  if (sp.table >= 0) d.chainTorque[m.tables[sp.table].rotor] += st.faceTorque;
 }
 
 }  // namespace
 
 void evaluateSpanForces(const SpanModel& m, SpanData& d, const InputSignal& in, double t, const double* y) {
   ++d.rhsEvaluations;
+  d.seatUnsolved = false;
   in.evaluate(t, d.inputs);
   rotorKinematics(m, d, y);
   std::fill(d.chainTorque.begin(), d.chainTorque.end(), 0.0);
   d.powerInput = d.powerDissipated = 0.0;
   const int n = static_cast<int>(m.spans.size());
-  for (int i = 0; i < n; ++i) spanKinematics(m, d, i);
-  springTensions(m, d);
+  for (int i = 0; i < n; ++i) {
+    const int table = m.spans[i].table;
+    if (table >= 0 && m.seats[table].present()) {
+      seatFace(m, d, i);
+      continue;
+    }
+    if (table >= 0) {
+      d.faceAngle[table] = d.rotorAngle[m.tables[table].rotor];
+      d.faceRate[table] = d.rotorRate[m.tables[table].rotor];
+    }
+    spanAtFace(m, d, i);
+  }
   for (int i = 0; i < n; ++i) spanLoads(m, d, i);
   d.rotorGen = d.chainTorque;  // same size: no allocation
   TensionerResult t0;
@@ -179,6 +254,10 @@ EnergyTerms spanEnergy(const SpanModel& m, const SpanData& d, const double* y) {
     const Span& sp = m.spans[i];
     const double stretch = d.spans[i].stretch;
     e.elastic += sp.engagement.empty() ? 0.5 * sp.stiffness * stretch * stretch : sp.engagement.energyAt(stretch);
+  }
+  for (std::size_t t = 0; t < m.tables.size(); ++t) {  // the seats' springs (their preloads' work too)
+    const double slip = d.faceAngle[t] - d.rotorAngle[m.tables[t].rotor];
+    e.elastic += m.seats[t].torque0 * slip + 0.5 * m.seats[t].stiffness * slip * slip;
   }
   if (lm.tensioner.present) {
     const int r = lm.tensioner.rotor;

@@ -21,6 +21,8 @@ struct SpanState {
   double speedFrom = 0.0, speedTo = 0.0;  // [m/s] chain speed at the leaving and arriving ends
   double radiusFrom = 0.0, radiusTo = 0.0;  // [m] effective radii R cos(theta_rel) of the ends
   double guideTorqueIn = 0.0, guideTorqueOut = 0.0;  // [m] its pivoting guide's table coefficients
+  double slope = 0.0;          // [m/rad] its length's by its guide's face angle (0 without one)
+  double faceTorque = 0.0;     // [N m] on its pivoting guide's face, math sense (0 without one)
   std::vector<double> factor;  // (free parts) capstan factor of (T - rho v^2) relative to the first part
   double tensionFrom = 0.0, tensionTo = 0.0;  // [N] where the chain leaves A / arrives on B
   double partTension(int part) const { return centrifugal + (tensionFrom - centrifugal) * factor[part]; }
@@ -35,6 +37,8 @@ struct SpanData {
   InputValues inputs;
   std::vector<double> rotorAngle, rotorRate, rotorCos, rotorSin;  // (rotors) math sense
   std::vector<double> chainTorque;     // (rotors) [N m] of the chain on the rotor, math sense
+  std::vector<double> faceAngle, faceRate;  // (guide tables) the angle and rate the spans' path
+                                            // follows: a seat's face (GuideSeat), else the guide's
   std::vector<double> rotorGen;        // (rotors) all torques, math sense
   std::vector<SpanState> spans;
   double tensionerForce = 0.0, tensionerStroke = 0.0, tensionerRate = 0.0;
@@ -43,6 +47,7 @@ struct SpanData {
   double chamberPressure = 0.0;       // [Pa] gauge, the chamber's
   HydraulicFlows tensionerFlows;      // [m3/s]
   double powerInput = 0.0, powerDissipated = 0.0;
+  bool seatUnsolved = false;           // a guide seat's balance not found at the last evaluation
   long long rhsEvaluations = 0;
 };
 

@@ -276,7 +276,7 @@ Span buildSpan(const Model& m, const std::vector<RouteItem>& route, int a, int b
   const ChainModel& ch = m.chain;
   sp.links = total / ch.pitch;
   sp.stiffness = ch.jointStiffness / sp.links;
-  sp.damping = ch.jointDamping / sp.links;
+  sp.damping = sp.jointDamping = ch.jointDamping / sp.links;
   sp.mass = ch.mass * sp.links;
   const double waveSpeed = std::sqrt(ch.jointStiffness * ch.pitch / (ch.mass / ch.pitch));
   sp.firstModeFrequency = waveSpeed / (2.0 * total);
@@ -444,6 +444,7 @@ SpanModel assembleSpanModel(const Model& m, bool calibrate) {
     sm.sprocketSpanOut[sm.spans[i].from.rotor] = static_cast<int>(i);
     sm.sprocketSpanIn[sm.spans[i].to.rotor] = static_cast<int>(i);
   }
+  sm.seats.assign(sm.tables.size(), GuideSeat{});
   mapPath(m, route, spanOfRoute, sm);
   sm.monitoredStart = linkCentres(m);
   layOutState(m, sm);
@@ -480,15 +481,24 @@ std::size_t segmentOf(const EngagementLaw& law, double e) {
 
 }  // namespace
 
+double EngagementLaw::slopeAt(double e) const {
+  const std::size_t k = segmentOf(*this, e);
+  return (tension[k + 1] - tension[k]) / (stretch[k + 1] - stretch[k]);
+}
+
 double EngagementLaw::tensionAt(double e) const {
   const std::size_t k = segmentOf(*this, e);
-  const double slope = (tension[k + 1] - tension[k]) / (stretch[k + 1] - stretch[k]);
-  return tension[k] + slope * (e - stretch[k]);
+  return tension[k] + slopeAt(e) * (e - stretch[k]);
 }
 
 double EngagementLaw::energyAt(double e) const {
   const std::size_t k = segmentOf(*this, e);
   return energy[k] + 0.5 * (tension[k] + tensionAt(e)) * (e - stretch[k]);
+}
+
+void setDampingScale(SpanModel& sm, double scale) {
+  sm.dampingScale = scale;
+  for (Span& sp : sm.spans) sp.damping = scale * sp.jointDamping;
 }
 
 double chainPassed(const SpanEnd& e, double theta, double& effectiveRadius) {

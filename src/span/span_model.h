@@ -54,6 +54,23 @@ struct GuideTable {
   double angleMax() const { return angle0 + dAngle * (static_cast<double>(length.size()) - 1.0); }
 };
 
+/// A pivoting guide's seat on its chain: the link model's chain gives under its guide (the links
+/// beside the face bend off their line, the plates press into it), so its guide is softer with
+/// the sprockets held than the spans alone make it. A spring in series between the guide and the
+/// spans makes up the difference: the spans' path follows the face angle chi where the spans'
+/// torque on the face, the seat passes to the guide (angle psi):
+///   torque_face(chi) = torque0 + stiffness (chi - psi),
+/// solved for chi at every evaluation (the seat holds no mass: the chain on the face moves with
+/// the guide; the links that bend are few and light). At the reference pose (the spans' torque
+/// torque0) chi = psi. Identified from the link model's statics (seat_calibration.h); stiffness
+/// 0: no seat, chi = psi.
+struct GuideSeat {
+  double stiffness = 0.0;      // [N m/rad]
+  double torque0 = 0.0;        // [N m] the spans' torque on the guide at the reference pose
+  double spanStiffness = 0.0;  // [N m/rad] the spans' against the face's turn there (the solve's slope)
+  bool present() const { return stiffness > 0.0; }
+};
+
 /// A span's tension over its stretch where the link model's rollers seat in the tooth gaps and
 /// its links settle on the guides: soft at small tensions, stiffer once the rollers sit on the
 /// flanks. Nodes (stretch, tension) identified from the link model's statics under several loads
@@ -65,6 +82,7 @@ struct EngagementLaw {
   bool empty() const { return stretch.empty(); }
   double tensionAt(double e) const;      // [N]
   double energyAt(double e) const;       // [J] integral of the tension from the first node to e
+  double slopeAt(double e) const;        // [N/m] dT/de at e
 };
 
 struct Span {
@@ -72,7 +90,8 @@ struct Span {
   SpanEnd from, to;           // A: the chain leaves it into the span; B: the chain arrives on it
   double links = 0.0;         // links the span holds at the assembled pose (path length / pitch)
   double stiffness = 0.0;     // [N/m] joint stiffness / links
-  double damping = 0.0;       // [N s/m] joint damping / links
+  double damping = 0.0;       // [N s/m] joint damping / links, times the model's dampingScale
+  double jointDamping = 0.0;  // [N s/m] joint damping / links
   double mass = 0.0;          // [kg] chain in the span
   double length0 = 0.0;       // [m] reference length at the assembled pose
   EngagementLaw engagement;   // identified from the link model's statics (empty: T = stiffness e)
@@ -97,10 +116,12 @@ struct SpanModel {
   const Model* links = nullptr;   // the link model it was assembled from (rotors, tensioner, path)
   std::vector<Span> spans;        // in route order, the first leaving the route's first sprocket
   std::vector<GuideTable> tables;
+  std::vector<GuideSeat> seats;   // (tables) each pivoting guide's seat on its chain
   std::vector<double> rotorInertia;  // [kg m^2] rotor inertia with the chain lumped on it
   std::vector<int> sprocketSpanIn, sprocketSpanOut;  // (rotors) spans arriving at / leaving each sprocket
   std::vector<PathPart> pathParts;   // (segments of the link model's path)
   double chainDensity = 0.0;      // [kg/m] link mass / pitch
+  double dampingScale = 1.0;      // the spans' dampers over the joints' in series (setDampingScale)
   double guideFriction = 0.0, frictionRegularization = 0.05;
   struct Probe { bool present = false; int span = -1, part = 0; } tightProbe, slackProbe;
   std::vector<Probe> spanProbes;  // (route elements) the free part leaving each
@@ -122,6 +143,10 @@ struct SpanModel {
 /// DescriptionError naming the field when the drive has no span model (fewer than two sprockets
 /// in the route, a span holding more than one pivoting guide).
 SpanModel assembleSpanModel(const Model& m, bool calibrate = true);
+
+/// Sets the spans' dampers to `scale` times the joints' in series (run/span_damping.h fits it
+/// to the link model's camshafts' mode).
+void setDampingScale(SpanModel& sm, double scale);
 
 /// s(theta) and ds/dtheta of a span end (see the header comment); theta in the running sense.
 double chainPassed(const SpanEnd& e, double theta, double& effectiveRadius);

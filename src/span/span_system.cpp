@@ -33,6 +33,10 @@ SpanSystem::SpanSystem(const SpanModel& m, const InputSignal& in, const HealthLi
 
 int SpanSystem::rhs(double t, const double* y, double* ydot) noexcept {
   spanForward(model_, data_, in_, t, y, ydot);
+  if (data_.seatUnsolved) {
+    lastError_ = {FailureKind::NonFinite, "the tension guide's seat on its chain found no balance (spanModel.guideSeat)"};
+    return 1;
+  }
   for (int i = 0; i < model_.nStates; ++i)
     if (!std::isfinite(ydot[i])) {
       lastError_ = {FailureKind::NonFinite, "non-finite derivative"};
