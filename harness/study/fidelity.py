@@ -90,7 +90,7 @@ def check(ap, args):
             ap.error(f"{option} {cycles}: at least 2 counted cycles are needed for a confidence interval")
     drive = drive_json(args.drive)
     keys = cycle_stats.headline_keys(elements(drive))
-    specs = args.tolerance or list(ladder.default_tolerances(is_hydraulic(drive)))
+    specs = args.tolerance or list(ladder.default_tolerances(is_hydraulic(drive), keys))
     args.tolerances = [parse_tolerance(ap, spec, keys) for spec in specs]
     args.out = args.out or str(paths.RESULTS / "fidelity")
     if args.link_summary:

@@ -33,9 +33,16 @@ DEFAULT_TOLERANCES = ("tensioner.F.mean=3%", "chain.Ftight.mean=3%", "chain.Fsla
 HYDRAULIC_TOLERANCES = (f"{cycle_stats.CHAMBER}.mean_bar=3%",)
 
 
-def default_tolerances(hydraulic):
-    """The acceptance set of a drive whose tensioner is hydraulic or not."""
-    return DEFAULT_TOLERANCES + (HYDRAULIC_TOLERANCES if hydraulic else ())
+def default_tolerances(hydraulic, keys=None):
+    """The acceptance set of a drive whose tensioner is hydraulic or not: with `keys` (its summary's,
+    cycle_stats.headline_keys), the default's set named after the drive's own elements (its span
+    forces, its tension guide's and every loaded sprocket's peak-to-peak); without, the default
+    drive's."""
+    if keys is None:
+        return DEFAULT_TOLERANCES + (HYDRAULIC_TOLERANCES if hydraulic else ())
+    levels = [f"{k}=3%" for k in keys if k in ("tensioner.F.mean", "chain.Ftight.mean", "chain.Fslack.mean")]
+    motion = [f"{k}=10%" for k in keys if k.endswith((".phi.peakToPeak_deg", ".timing.peakToPeak_degCA"))]
+    return tuple(levels + motion + [f"{ORDERS}=3dB"]) + (HYDRAULIC_TOLERANCES if hydraulic else ())
 
 Tolerance = collections.namedtuple("Tolerance", "key limit unit")  # limit in unit: "%" or "dB"
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "dynamics/body_forces.h"
 #include "math/elementary.h"
@@ -138,13 +139,13 @@ void spanAtFace(const SpanModel& m, SpanData& d, int i) {
 
 // Span i whose guide sits on a seat (GuideSeat): the face angle chi where the spans' torque on
 // the face equals the seat's, torque0 + k (chi - psi), by the secant method from chi = psi (the
-// same start every time: the same bits whatever came before), its first step on the slope
-// -(k + the spans' identified stiffness). The face's rate is the one that keeps that balance in
+// same start every time: the same bits whatever came before), its first step, and every step once
+// the secant stalls, on the slope -(k + the spans' identified stiffness). The face's rate is the one that keeps that balance in
 // the linear spring's terms, chi' = (k psi' + k_e l' dv) / (k + k_e l'^2): the guide's rate and
 // the chain's speed difference dv over the span shared between the seat and the span's stretch
 // (k_e the law's slope, l' the table's).
 void seatFace(const SpanModel& m, SpanData& d, int i) {
-  constexpr int kMaxIterations = 30;
+  constexpr int kMaxIterations = 100, kSecantIterations = 8;
   constexpr double kTolerance = 1e-13;  // [rad]
   const int t = m.spans[i].table;
   const GuideSeat& seat = m.seats[t];
@@ -152,6 +153,7 @@ void seatFace(const SpanModel& m, SpanData& d, int i) {
   SpanState& st = d.spans[i];
   const double psi = d.rotorAngle[r];
   double chi = psi, chiBefore = psi, imbalanceBefore = 0.0;
+  double below = -std::numeric_limits<double>::infinity(), above = std::numeric_limits<double>::infinity();
   for (int it = 0;; ++it) {
     d.faceAngle[t] = chi;
     d.faceRate[t] = d.rotorRate[r];
@@ -164,9 +166,15 @@ void seatFace(const SpanModel& m, SpanData& d, int i) {
     st.tension = spring + (d.quasiStatic ? 0.0 : m.spans[i].damping * st.stretchRate);
     distributeTension(m, d, i);
     const double imbalance = st.faceTorque - seat.torque0 - seat.stiffness * (chi - psi);
-    const double slope = it > 0 && chi != chiBefore ? (imbalance - imbalanceBefore) / (chi - chiBefore)
-                                                    : -(seat.stiffness + seat.spanStiffness);
-    const double step = -imbalance / slope;
+    // the secant's slope while it falls (the balance falls with chi) and for the first
+    // kSecantIterations, else the identified one; a step out of the bracket the iterates have
+    // found (a law's kink or the face's end can throw either) bisects it
+    const double secant = it > 0 && chi != chiBefore ? (imbalance - imbalanceBefore) / (chi - chiBefore) : 0.0;
+    const double slope = it < kSecantIterations && secant < 0.0 ? secant : -(seat.stiffness + seat.spanStiffness);
+    (imbalance > 0.0 ? below : above) = chi;
+    double next = chi - imbalance / slope;
+    if (std::isfinite(below) && std::isfinite(above) && (next <= below || next >= above)) next = 0.5 * (below + above);
+    const double step = next - chi;
     if (std::fabs(step) <= kTolerance) break;
     if (it == kMaxIterations) {  // (SpanSystem::rhs stops the run naming the seat)
       d.seatUnsolved = true;

@@ -6,7 +6,8 @@ import math
 
 import pytest
 
-from harness import cycle_stats
+from harness import cycle_stats, paths
+from harness.drive import description
 from harness.drive.description import elements
 from harness.study import ladder
 
@@ -141,3 +142,19 @@ def test_accuracy_table_and_span_point():
     p = ladder.span_point(comparison(1000.0, 102.0))
     assert p["cpu_per_s"] == 0.01 and p["error"] == pytest.approx(2.0)
     assert p["errorHigh"] - p["error"] == pytest.approx(100.0 * math.hypot(1.0, 0.5) / 100.0)
+
+
+def test_the_default_set_names_the_drives_own_elements():
+    """A drive whose sprockets and guide have other names than the default drive's gets the same
+    acceptance set in its own names (a single-camshaft drive: one timing), the default drive its
+    own set unchanged."""
+    default = description.elements(description.drive_json(None))
+    assert ladder.default_tolerances(True, cycle_stats.headline_keys(default)) == ladder.default_tolerances(True)
+    single = description.elements(description.drive_json(paths.ROOT / "tests/drives/sohc_single_cam.json"))
+    keys = cycle_stats.headline_keys(single)
+    specs = ladder.default_tolerances(True, keys)
+    assert "camshaft.timing.peakToPeak_degCA=10%" in specs
+    assert not any("camshaftIntake" in s for s in specs)
+    for spec in specs:  # each one a tolerance of that drive's summary
+        ladder.parse_tolerance(spec, keys)
+    assert ladder.default_tolerances(False, keys)[-1] == "orders=3dB"
