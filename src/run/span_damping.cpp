@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "description/drive_description.h"
 #include "math/elementary.h"
 #include "run/simulation.h"
 #include "span/calibration_cache.h"
@@ -40,8 +41,8 @@ SimulationOptions runOptions(const Model& m, Fidelity fidelity, const span::Span
 
 std::unique_ptr<HeldInputs> referenceInputs(const Model& m, double crankSpeed) {
   auto in = std::make_unique<HeldInputs>(m);
+  in->values = span::seatReferenceInputs(m);
   in->values.crankSpeed = crankSpeed;
-  for (int r : span::loadedSprockets(m)) in->values.loadTorque[r] = span::kSeatReferenceLoad;
   return in;
 }
 
@@ -130,7 +131,10 @@ SpanDampingCalibration identifySpanDamping(const std::shared_ptr<const Model>& m
   };
   const double target = c.link.mode.dampingRatio;
   if (c.link.mode.atBound || target > 0.3) return finish("the link model's response is not one mode");
-  if (c.span.mode.dampingRatio >= target) return finish("the spans' dampers damp the mode as much already");
+  if (c.span.mode.dampingRatio >= target) {  // (the joints' dampers are the answer)
+    c.identified = true;
+    return finish("the spans' dampers damp the mode as much already");
+  }
   // the secant method on ln(scale), from 1 and a proportional guess
   double s0 = 0.0, z0 = c.span.mode.dampingRatio;
   double s1 = math::log(std::min(kMaxScale, target / z0)), z1 = 0.0;
@@ -160,7 +164,7 @@ std::string describeSpanDamping(const SpanDampingCalibration& c) {
                 c.link.mode.frequency, c.link.mode.dampingRatio, kDampingLinkPairs, c.link.coherent,
                 c.link.mode.residual, c.spanBefore.mode.frequency, c.spanBefore.mode.dampingRatio,
                 c.span.mode.frequency, c.span.mode.dampingRatio, c.scale, c.iterations,
-                c.identified ? "" : ("not fitted: " + c.note + "; ").c_str(), c.cpuSeconds);
+                c.note.empty() ? "" : (c.note + "; ").c_str(), c.cpuSeconds);
   return line;
 }
 
@@ -228,6 +232,9 @@ SpanDampingCalibration calibrateSpanDamping(const std::shared_ptr<const Model>& 
     c = identifySpanDamping(m, sm);
     if (!file.empty()) span::writeCacheFile(dir, file, cachedJson(c));
   }
+  if (!c.identified)  // (a scale that misses the link model's mode is no identified one)
+    throw DescriptionError({"spanModel.damping: \"identified\": " + c.note + "; give the scale as a number instead (the "
+                            "spans' dampers over the joints' in series, 0 to 1000)"});
   span::setDampingScale(sm, c.scale);
   sm.notes.push_back("calibration: " + describeSpanDamping(c) + (cached ? " (from the cache " + file + ")" : ""));
   return c;

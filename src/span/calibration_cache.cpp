@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "description/drive_description.h"
 #include "utf8_path.h"
 
 namespace chaindrive {
@@ -59,8 +60,8 @@ json toJson(const SpanCalibration& c, const std::string& key) {
     laws.push_back({{"stretch_m", hexArray(law.stretch)}, {"tension_N", hexArray(law.tension)},
                     {"energy_J", hexArray(law.energy)}});
   for (const SeatIdentification& s : c.seats)
-    seats.push_back(hexArray({s.seat.stiffness, s.seat.torque0, s.seat.spanStiffness, s.linkStiffness,
-                              s.spanStiffness, s.linkDamping, s.spanDamping, s.tensionerStiffness}));
+    seats.push_back(hexArray({s.seat.stiffness, s.seat.torque0, s.seat.spanStiffness, s.linkStiffness, s.linkDamping,
+                              s.spanDamping, s.tensionerStiffness}));
   return {{"format", kFormat}, {"key", key}, {"laws", laws}, {"seats", seats}, {"poses", c.poses}, {"posesRejected", c.posesRejected},
           {"residualRms_m", hexArray(c.residualRms)}, {"residualMax_m", hexArray(c.residualMax)},
           {"leverRatioMin", hexArray(c.leverRatioMin)}, {"leverRatioMax", hexArray(c.leverRatioMax)},
@@ -86,8 +87,8 @@ std::string readCalibration(const std::string& file, const std::string& key, std
                                      fromHex(law.at("energy_J"))});
     for (const json& seat : j.at("seats")) {  // (the order toJson writes)
       const std::vector<double> v = fromHex(seat);
-      if (v.size() != 8) return "a seat of " + std::to_string(v.size()) + " numbers, not 8";
-      c.seats.push_back(SeatIdentification{GuideSeat{v[0], v[1], v[2]}, v[3], v[4], v[5], v[6], v[7]});
+      if (v.size() != 7) return "a seat of " + std::to_string(v.size()) + " numbers, not 7";
+      c.seats.push_back(SeatIdentification{GuideSeat{v[0], v[1], v[2]}, v[3], v[4], v[5], v[6]});
       if (c.seats.size() > tables) return std::to_string(c.seats.size()) + " seats for " + std::to_string(tables) +
                                           " pivoting guides";
     }
@@ -181,6 +182,9 @@ CalibrationOrigin calibrate(SpanModel& sm, const std::string& file, SpanCalibrat
     try {
       c = identifySpanLaws(sm);
     } catch (const std::runtime_error& e) {  // a drive whose statics leave spans slack: no laws
+      if (sm.links->description.spanModel.guideSeat != SpanModelDesc::Source::Off)  // (its preload is identified)
+        throw DescriptionError({std::string("spanModel.guideSeat: the seat needs the span model's calibration, which "
+                                            "found none (") + e.what() + "); allowed here: \"none\""});
       sm.notes.push_back(std::string("calibration: none (") + e.what() + "); the spans keep the joints' stiffness");
       if (path) path->clear();
       return CalibrationOrigin::None;

@@ -20,16 +20,6 @@ namespace {
 // A link model (below 2 % softer than the spans) keeps the guide on its spans: no seat.
 constexpr double kSofterBy = 0.02;
 
-// The link model's inputs at the reference pose: the loads on every loaded sprocket, the drive's
-// supply pressure.
-InputValues referenceInputs(const Model& m) {
-  InputValues in;
-  in.loadTorque.assign(m.rotors.size(), 0.0);
-  for (int r : loadedSprockets(m)) in.loadTorque[r] = kSeatReferenceLoad;
-  in.supplyPressure = m.tensioner.hydraulic.supplyPressure;
-  return in;
-}
-
 // The link model against the guide's turn with the sprockets held, at its static pose y: the
 // stiffness condensed onto the guide's angle (links free) and the damping on that motion (the
 // links following as in statics) at the nominal motion of the reference speed.
@@ -119,11 +109,19 @@ SpanGuideResponse spanGuideResponse(const SpanModel& sm, const InputValues& in, 
 
 }  // namespace
 
+InputValues seatReferenceInputs(const Model& m) {
+  InputValues in;
+  in.loadTorque.assign(m.rotors.size(), 0.0);
+  for (int r : loadedSprockets(m)) in.loadTorque[r] = kSeatReferenceLoad;
+  in.supplyPressure = m.tensioner.hydraulic.supplyPressure;
+  return in;
+}
+
 std::vector<SeatIdentification> identifyGuideSeats(const SpanModel& sm) {
   const Model& m = *sm.links;
   std::vector<SeatIdentification> seats(sm.tables.size());
   if (sm.tables.empty()) return seats;
-  const InputValues in = referenceInputs(m);
+  const InputValues in = seatReferenceInputs(m);
   PreloadReport report;
   const std::vector<double> yLink = initialState(m, in, PreloadOptions{}, report);
   if (!report.converged)
@@ -134,14 +132,13 @@ std::vector<SeatIdentification> identifyGuideSeats(const SpanModel& sm) {
     const SpanGuideResponse span = spanGuideResponse(sm, in, yLink, static_cast<int>(t));
     SeatIdentification& s = seats[t];
     s.tensionerStiffness = span.stiffness - span.spansStiffness;
-    s.spanStiffness = span.spansStiffness;
     s.linkStiffness = link.stiffness - s.tensionerStiffness;
     s.spanDamping = span.spansDamping;
     s.linkDamping = link.damping - (span.damping - span.spansDamping);
     s.seat.torque0 = span.faceTorque;
-    s.seat.spanStiffness = s.spanStiffness;
-    if (s.linkStiffness > 0.0 && s.linkStiffness <= (1.0 - kSofterBy) * s.spanStiffness)
-      s.seat.stiffness = 1.0 / (1.0 / s.linkStiffness - 1.0 / s.spanStiffness);
+    s.seat.spanStiffness = span.spansStiffness;
+    if (s.linkStiffness > 0.0 && s.linkStiffness <= (1.0 - kSofterBy) * span.spansStiffness)
+      s.seat.stiffness = 1.0 / (1.0 / s.linkStiffness - 1.0 / span.spansStiffness);
   }
   return seats;
 }
@@ -151,12 +148,12 @@ std::string describeSeat(const SpanModel& sm, int table, const SeatIdentificatio
   const std::string name = sm.links->rotors[sm.tables[table].rotor].name;
   if (!s.seat.present()) {
     std::snprintf(line, sizeof line, "guide '%s': no seat (the link model's chain %.4g N m/rad against the spans' "
-                  "%.4g: not softer)", name.c_str(), s.linkStiffness, s.spanStiffness);
+                  "%.4g: not softer)", name.c_str(), s.linkStiffness, s.seat.spanStiffness);
     return line;
   }
   std::snprintf(line, sizeof line, "guide '%s': seat %.4g N m/rad at %.4g N m (the link model's chain %.4g N m/rad "
                 "against the spans' %.4g, the tensioner %.4g; on that motion the link model's damping %.4g N m s/rad, "
-                "the spans' %.4g)", name.c_str(), s.seat.stiffness, s.seat.torque0, s.linkStiffness, s.spanStiffness,
+                "the spans' %.4g)", name.c_str(), s.seat.stiffness, s.seat.torque0, s.linkStiffness, s.seat.spanStiffness,
                 s.tensionerStiffness, s.linkDamping, s.spanDamping);
   return line;
 }

@@ -19,15 +19,16 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/data.h"
 #include "span/span_model.h"
 
 namespace chaindrive::span {
 
 /// What the identification measured per pivoting guide, and the seat it gives.
 struct SeatIdentification {
-  GuideSeat seat;               // stiffness 0: the link model's chain is not softer (no seat)
+  GuideSeat seat;               // stiffness 0: the link model's chain is not softer (no seat); its
+                                // spanStiffness: the span model's spans against the guide's turn
   double linkStiffness = 0.0;   // [N m/rad] the link model's chain against the guide's turn
-  double spanStiffness = 0.0;   // [N m/rad] the span model's spans
   double linkDamping = 0.0;     // [N m s/rad] the link model's chain on the same motion
   double spanDamping = 0.0;     // [N m s/rad] the span model's spans
   double tensionerStiffness = 0.0;  // [N m/rad] the rest of the guide's (the same in both)
@@ -37,6 +38,10 @@ struct SeatIdentification {
 /// damping's nominal motion [rad/s].
 constexpr double kSeatReferenceLoad = 10.0;
 constexpr double kSeatReferenceSpeed = 3000.0 * 2.0 * 3.14159265358979323846 / 60.0;
+
+/// The link model's inputs at the reference pose: kSeatReferenceLoad on every loaded sprocket,
+/// the drive's supply pressure, the crankshaft at rest.
+InputValues seatReferenceInputs(const Model& m);
 
 /// Identifies the seats of sm's pivoting guides (sm with its laws, without seats) at the
 /// reference pose: the loads above at the drive's supply pressure. Throws std::runtime_error when

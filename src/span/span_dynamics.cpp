@@ -99,8 +99,7 @@ double springTension(const SpanModel& m, const SpanData& d, int i, double& slope
     slope = sp.stiffness;
     return sp.stiffness * e;
   }
-  slope = sp.engagement.slopeAt(e);
-  return sp.engagement.tensionAt(e);
+  return sp.engagement.tensionAt(e, &slope);
 }
 
 // The tension's distribution over the guides of span i (the tension above the centrifugal part

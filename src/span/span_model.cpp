@@ -481,14 +481,11 @@ std::size_t segmentOf(const EngagementLaw& law, double e) {
 
 }  // namespace
 
-double EngagementLaw::slopeAt(double e) const {
+double EngagementLaw::tensionAt(double e, double* slope) const {
   const std::size_t k = segmentOf(*this, e);
-  return (tension[k + 1] - tension[k]) / (stretch[k + 1] - stretch[k]);
-}
-
-double EngagementLaw::tensionAt(double e) const {
-  const std::size_t k = segmentOf(*this, e);
-  return tension[k] + slopeAt(e) * (e - stretch[k]);
+  const double s = (tension[k + 1] - tension[k]) / (stretch[k + 1] - stretch[k]);
+  if (slope) *slope = s;
+  return tension[k] + s * (e - stretch[k]);
 }
 
 double EngagementLaw::energyAt(double e) const {

@@ -80,9 +80,8 @@ struct EngagementLaw {
   std::vector<double> stretch, tension;  // [m], [N] nodes, both increasing
   std::vector<double> energy;            // [J] integral of the tension from the first node
   bool empty() const { return stretch.empty(); }
-  double tensionAt(double e) const;      // [N]
+  double tensionAt(double e, double* slope = nullptr) const;  // [N]; its slope dT/de [N/m] into *slope
   double energyAt(double e) const;       // [J] integral of the tension from the first node to e
-  double slopeAt(double e) const;        // [N/m] dT/de at e
 };
 
 struct Span {
