@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <stdexcept>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -75,7 +76,11 @@ std::vector<std::vector<double>> pulseRun(const std::shared_ptr<const Model>& m,
   for (long long k = 0; k < last; ++k) {
     const bool on = pulse && k >= pulseFrom && k < pulseFrom + pulseSteps;
     for (int r : loaded) in.values.loadTorque[r] = span::kSeatReferenceLoad + (on ? kDampingPulse : 0.0);
-    sim.advanceTo(static_cast<double>(k + 1) * kCommunicationStep);
+    // the fit's samples are 0.1 ms apart: a solver step that does not divide it would sample elsewhere
+    const double wanted = static_cast<double>(k + 1) * kCommunicationStep;
+    if (std::fabs(sim.advanceTo(wanted) - wanted) > 1e-9 * kCommunicationStep)
+      throw std::runtime_error("span damping: the solver's grid misses t = " + std::to_string(wanted) +
+                               " s; its step must divide " + std::to_string(kCommunicationStep) + " s");
     if (k + 1 >= first)
       for (std::size_t c = 0; c < loaded.size(); ++c) angles[c].push_back(sim.state()[angleState(sim, loaded[c])]);
   }
