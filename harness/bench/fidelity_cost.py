@@ -2,7 +2,7 @@
 the same run on one core: the ratio the fidelity ladder promises.
 
     python -m harness bench-fidelity [--rpm 1000 3000 6000] [--cycles 8] [--repeats 3]
-                                     [--out results/benchmark_fidelity_cost.md]
+                                     [--drive FILE] [--out results/benchmark_fidelity_cost.md]
 
 Per speed and communication step (0.1 ms, the main job's, and 1 ms, an engine simulator's), the
 main job's scene (harness/job.py: closed loop with the measured-torque tables, the run-in and
@@ -25,7 +25,7 @@ import tempfile
 import numpy as np
 
 from .. import job, paths, runs
-from ..fmu import fmu
+from ..fmu import export, fmu
 from ..package import compare
 
 TARGET_RATIO = 1.0 / 20.0  # span / link real-time method, CPU inside fmi2DoStep
@@ -36,6 +36,8 @@ def add_arguments(ap):
     ap.add_argument("--rpm", type=float, nargs="+", default=[1000.0, 3000.0, 6000.0], help="engine speeds [rpm]")
     ap.add_argument("--cycles", type=int, default=8, help="engine cycles counted after the run-in")
     ap.add_argument("--repeats", type=int, default=3, help="C-master replays per run, by turns (the smallest counts)")
+    ap.add_argument("--drive", help="drive description (docs/drive_schema.md; default: the default drive), "
+                    "both models of it (a span model with its dynamics calibrated: its description's spanModel)")
     ap.add_argument("--out", default=str(paths.RESULTS / "benchmark_fidelity_cost.md"))
 
 
@@ -52,17 +54,18 @@ def config_of(args, rpm, fidelity, step):
     run_in = job.run_in_cycles(rpm)
     if fidelity == "link":
         return job.run_config(rpm=rpm, cycles=args.cycles, step=step, method=job.REALTIME_METHOD,
-                              solver_step=job.REALTIME_STEP, run_in=run_in)
-    return job.run_config(rpm=rpm, cycles=args.cycles, step=step, fidelity=fidelity, run_in=run_in)
+                              solver_step=job.REALTIME_STEP, run_in=run_in, drive=args.drive)
+    return job.run_config(rpm=rpm, cycles=args.cycles, step=step, fidelity=fidelity, run_in=run_in,
+                          drive=args.drive)
 
 
 class Replayer:
-    """The C master on the build's FMU, in a work folder."""
+    """The C master on the drive's FMU (the one the fmpy runs use), in a work folder."""
 
-    def __init__(self, work):
+    def __init__(self, work, drive=None):
         self.work = pathlib.Path(work)
         self.master = compare.build_linux_master(self.work)
-        self.fmu_dir = pathlib.Path(fmu.unpacked(fmu.fmu_path())[1])
+        self.fmu_dir = pathlib.Path(fmu.unpacked(export.fmu_for(drive))[1])
         self.binary = self.fmu_dir / "binaries" / "linux64" / f"{compare.model_identifier(self.fmu_dir)}.so"
         self.uri = (self.fmu_dir / "resources").resolve().as_uri()
 
@@ -104,6 +107,7 @@ def lines_of(step, found):
 def run(args):
     lines = ["# Fidelity cost: the span model against the link model's real-time method", "",
              f"Machine: {runs.machine()}; command: python -m harness bench-fidelity {' '.join(args.argv)}", "",
+             f"Drive: {args.drive or 'the default drive'}.", "",
              f"Scene: the main job (closed loop with the torque tables of harness/tables/data), run-in and "
              f"{args.cycles} counted cycles, recorded through fmpy and replayed by a C master "
              f"(harness/package/fmi2_master.c) with the same output bits. RTF: CPU s of the thread inside "
@@ -111,7 +115,7 @@ def run(args):
              f"measured around its calls from Python (the interpreter's call overhead included).", ""]
     print("\n".join(lines))
     with tempfile.TemporaryDirectory() as work:
-        replayer = Replayer(work)
+        replayer = Replayer(work, args.drive)
         for rpm in args.rpm:
             part = [f"## {rpm:g} rpm", ""]
             for step in COMMUNICATION_STEPS:

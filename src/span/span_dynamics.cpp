@@ -64,10 +64,10 @@ void rotorKinematics(const SpanModel& m, SpanData& d, const double* y) {
   }
 }
 
-// Stretch of span i and its rate at its pivoting guide's face angle and rate (d.faceAngle,
-// d.faceRate); the end sprockets' effective radii and the guide table's torque coefficients for
-// its loads.
-void spanKinematics(const SpanModel& m, SpanData& d, int i) {
+// Span i's ends: the chain passed over its end sprockets (st.passed), their effective radii and
+// speeds, and the capstan factors its guides give (they hang on the chain's speed alone). Nothing
+// here hangs on the guide's face angle, so a seat's solve (seatFace) does it once.
+void spanEnds(const SpanModel& m, SpanData& d, int i) {
   const Model& lm = *m.links;
   const Span& sp = m.spans[i];
   SpanState& st = d.spans[i];
@@ -75,14 +75,31 @@ void spanKinematics(const SpanModel& m, SpanData& d, int i) {
   const double thA = sense * (d.rotorAngle[sp.from.rotor] - lm.rotors[sp.from.rotor].initialAngle);
   const double thB = sense * (d.rotorAngle[sp.to.rotor] - lm.rotors[sp.to.rotor].initialAngle);
   const double sA = chainPassed(sp.from, thA, st.radiusFrom), sB = chainPassed(sp.to, thB, st.radiusTo);
+  st.passed = sA - sB;
   st.speedFrom = st.radiusFrom * sense * d.rotorRate[sp.from.rotor];
   st.speedTo = st.radiusTo * sense * d.rotorRate[sp.to.rotor];
+  st.speed = 0.5 * (st.speedFrom + st.speedTo);
+  st.centrifugal = m.chainDensity * st.speed * st.speed;
+  const double mu = m.guideFriction * st.speed / std::sqrt(st.speed * st.speed +
+                                                           m.frictionRegularization * m.frictionRegularization);
+  st.weighted = sp.parts[0];
+  for (std::size_t k = 1; k < sp.parts.size(); ++k) {
+    st.factor[k] = st.factor[k - 1] * math::exp(mu * sp.wraps[k - 1]);
+    st.weighted += sp.parts[k] * st.factor[k];
+  }
+}
+
+// Stretch of span i and its rate at its pivoting guide's face angle and rate (d.faceAngle,
+// d.faceRate), after spanEnds; the guide table's torque coefficients for its loads.
+void spanAtFaceAngle(const SpanModel& m, SpanData& d, int i) {
+  const Span& sp = m.spans[i];
+  SpanState& st = d.spans[i];
   TableValue g{sp.length0, 0.0, 0.0, 0.0};
   if (sp.table >= 0) g = lookUp(m.tables[sp.table], d.faceAngle[sp.table]);
   st.guideTorqueIn = g.torqueIn;
   st.guideTorqueOut = g.torqueOut;
   st.slope = g.slope;
-  st.stretch = g.length - sp.length0 - (sA - sB);
+  st.stretch = g.length - sp.length0 - st.passed;
   st.stretchRate = (sp.table >= 0 ? g.slope * d.faceRate[sp.table] : 0.0) - (st.speedFrom - st.speedTo);
 }
 
@@ -103,21 +120,12 @@ double springTension(const SpanModel& m, const SpanData& d, int i, double& slope
 }
 
 // The tension's distribution over the guides of span i (the tension above the centrifugal part
-// grows over each guide by its capstan factor; the spring holds the length-weighted mean) and the
-// spans' torque on its pivoting guide's face.
+// grows over each guide by its capstan factor, spanEnds; the spring holds the length-weighted
+// mean) and the spans' torque on its pivoting guide's face.
 void distributeTension(const SpanModel& m, SpanData& d, int i) {
   const Span& sp = m.spans[i];
   SpanState& st = d.spans[i];
-  st.speed = 0.5 * (st.speedFrom + st.speedTo);
-  st.centrifugal = m.chainDensity * st.speed * st.speed;
-  const double mu = m.guideFriction * st.speed / std::sqrt(st.speed * st.speed +
-                                                           m.frictionRegularization * m.frictionRegularization);
-  double weighted = sp.parts[0];
-  for (std::size_t k = 1; k < sp.parts.size(); ++k) {
-    st.factor[k] = st.factor[k - 1] * math::exp(mu * sp.wraps[k - 1]);
-    weighted += sp.parts[k] * st.factor[k];
-  }
-  st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * sp.partsLength / weighted;
+  st.tensionFrom = st.centrifugal + (st.tension - st.centrifugal) * sp.partsLength / st.weighted;
   st.tensionTo = st.partTension(static_cast<int>(sp.parts.size()) - 1);
   st.faceTorque = 0.0;
   if (sp.table >= 0) {
@@ -129,7 +137,8 @@ void distributeTension(const SpanModel& m, SpanData& d, int i) {
 
 // Span i at its face's angle and rate: kinematics, tension (spring and damper), distribution.
 void spanAtFace(const SpanModel& m, SpanData& d, int i) {
-  spanKinematics(m, d, i);
+  spanEnds(m, d, i);
+  spanAtFaceAngle(m, d, i);
   double slope = 0.0;
   SpanState& st = d.spans[i];
   st.tension = springTension(m, d, i, slope) + (d.quasiStatic ? 0.0 : m.spans[i].damping * st.stretchRate);
@@ -153,10 +162,11 @@ void seatFace(const SpanModel& m, SpanData& d, int i) {
   const double psi = d.rotorAngle[r];
   double chi = psi, chiBefore = psi, imbalanceBefore = 0.0;
   double below = -std::numeric_limits<double>::infinity(), above = std::numeric_limits<double>::infinity();
+  spanEnds(m, d, i);
   for (int it = 0;; ++it) {
     d.faceAngle[t] = chi;
     d.faceRate[t] = d.rotorRate[r];
-    spanKinematics(m, d, i);
+    spanAtFaceAngle(m, d, i);
     double ke = 0.0;
     const double spring = springTension(m, d, i, ke);
     const double dv = st.speedFrom - st.speedTo;

@@ -18,12 +18,14 @@ struct SpanState {
   double tension = 0.0;        // [N] spring-damper force (the span's mean tension)
   double speed = 0.0;          // [m/s] chain speed, mean of the two ends' R cos(theta_rel) omega
   double centrifugal = 0.0;    // [N] rho v^2
+  double passed = 0.0;         // [m] chain passed over its leaving end less over its arriving end
   double speedFrom = 0.0, speedTo = 0.0;  // [m/s] chain speed at the leaving and arriving ends
   double radiusFrom = 0.0, radiusTo = 0.0;  // [m] effective radii R cos(theta_rel) of the ends
   double guideTorqueIn = 0.0, guideTorqueOut = 0.0;  // [m] its pivoting guide's table coefficients
   double slope = 0.0;          // [m/rad] its length's by its guide's face angle (0 without one)
   double faceTorque = 0.0;     // [N m] on its pivoting guide's face, math sense (0 without one)
   std::vector<double> factor;  // (free parts) capstan factor of (T - rho v^2) relative to the first part
+  double weighted = 0.0;       // [m] the free parts' lengths weighted by their factors
   double tensionFrom = 0.0, tensionTo = 0.0;  // [N] where the chain leaves A / arrives on B
   double partTension(int part) const { return centrifugal + (tensionFrom - centrifugal) * factor[part]; }
 };

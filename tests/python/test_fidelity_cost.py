@@ -48,6 +48,15 @@ def test_short_benchmark_replays_with_the_same_bits(tmp_path):
     assert report.count("span model RTF") == 2 and "0.1 ms communication steps" in report
 
 
+def test_benchmark_of_another_drive_replays_that_drives_fmu(tmp_path):
+    # (the replay on the default drive's FMU differs from the drive's run at its first step)
+    out = tmp_path / "cost.md"
+    drive = "tests/data/drives/default_drive_spring_damper.json"
+    assert cli.main(["bench-fidelity", "--rpm", "3000", "--cycles", "1", "--repeats", "1", "--drive", drive,
+                     "--out", str(out)]) == 0
+    assert f"Drive: {drive}." in out.read_text()
+
+
 def test_short_step_study_compares_with_the_reference(tmp_path):
     out = tmp_path / "steps"
     assert cli.main(["span-steps", "--rpm", "3000", "--steps", "2.5e-5", "5e-5", "--cycles", "2",
