@@ -56,7 +56,7 @@ from .drive.description import clearance_or_rigid, drive_json, is_hydraulic, oil
 from .drive import description
 from .drive.description import elements as drive_elements
 from .errors import UserError
-from .fmu import export, fmu
+from .fmu import export, fmu, loop
 from .plots import drive_picture, plots
 from .tables import tables
 
@@ -73,6 +73,7 @@ FIDELITIES = ("link", "span")  # values of the FMU parameter `fidelity`: the ref
 # the real-time method of the link fidelity: Verlet with the joints' damping implicit, 28 steps per
 # 0.1 ms communication step (about three quarters of its stable step; docs/benchmark_realtime.md)
 REALTIME_METHOD, REALTIME_STEP = "fixed-verlet-implicit-joint-damping", 1e-4 / 28
+MASTER_LOOPS = ("compiled", "python")  # run_closed's loop: in C, or through fmpy's calls (the same bits)
 COUPLINGS = ("closed", "open")  # this module's master loop (the default), fmpy.simulate_fmu
 COMMUNICATION_STEP = 1e-4  # [s] the default communication step
 NEWMARK_GAMMA = 0.5  # the FMU parameter solver.newmarkGamma's default
@@ -109,6 +110,7 @@ class RunConfig:
     replicas: int = 1                    # runs of the ensemble (harness/replicas.py); 1: the run alone
     notes: tuple = ()                    # note lines on the options (given, but without effect on this drive)
     loads: tuple = ()                    # ((sprocket, torque [N m]), ...): constant loads (--load NAME=VALUE)
+    master_loop: str = MASTER_LOOPS[0]   # the closed loop's: compiled (fmu/loop.py) or python (fmpy's calls)
 
 
 def drive_clearance_or_rigid(path):
@@ -192,30 +194,64 @@ def table_inputs(loads, speed, elements, supply_pressure=SUPPLY_PRESSURE, speed_
             u["tensioner.supplyPressure"] = supply_pressure
         return u
     inputs.angles = [elements.crank] + list(loads)
+    # (the same inputs for the compiled loop: {input: loop.Term}, in the order of inputs()' keys)
+    column = speed_column(speed)
+    inputs.terms = {elements.crank + ".w": loop.Term.table("speed", 0, speed.x, speed.columns[column],
+                                                           tables.PERIODS[speed.kind], speed_factor,
+                                                           rpm=column.endswith("_rpm"))}
+    inputs.terms.update({name + ".tau": load_term(load, 1 + k) for k, (name, load) in enumerate(loads.items())})
+    if elements.hydraulic:
+        inputs.terms["tensioner.supplyPressure"] = loop.Term("constant", value=float(supply_pressure))
     return inputs
 
 
-def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=None):
+def load_term(load, angle):
+    """A tables.Load as the compiled loop's loop.Term, reading the angle of index `angle`."""
+    if load.table is None:
+        return loop.Term("constant", value=float(load.constant))
+    x, y, period = load.table.x, load.table.columns[load.name + ".tau"], tables.PERIODS[load.table.kind]
+    if load.table.kind == "sprocket":
+        return loop.Term.table("shifted", angle, x, y, period, load.phase_deg)
+    return loop.Term.table("scaled", angle, x, y, period, load.ratio)
+
+
+def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=None, compiled=True):
     """Master loop: inputs (table_inputs) looked up at the FMU's own angles before every step.
     duration [s]; or None: until the run-in (a runin.RunIn, fed each engine cycle's tensioner
     stroke) has ended and config.cycles counted cycles followed. fmu_file: the FMU (a file or an
-    unpacked folder; default the drive's: export.fmu_for). Returns (record, CPU seconds spent inside
-    each fmi2DoStep). A step the FMU refuses (a blow-up: fmi2Discard) raises RunFailed with the
-    record up to the failure."""
+    unpacked folder; default the drive's: export.fmu_for). The loop runs compiled (fmu/loop.py) when
+    the inputs say how (their `terms`) and `compiled`, else in Python (fmpy's calls): the same bits.
+    Returns (record, CPU seconds spent inside each fmi2DoStep, the thread's CPU seconds from the
+    first fmi2DoStep to the last: the FMU's and the loop's own). A step the FMU refuses (a blow-up:
+    fmi2Discard) raises RunFailed with the record up to the failure."""
     s = fmu.Slave("chaindrive", fmu=fmu_file or export.fmu_for(config.drive), parameters=parameters_of(config))
-    step = config.step
     angles = [f"{name}.phi" for name in inputs.angles]
     u0 = inputs(0.0, {name: 0.0 for name in inputs.angles})
     s.initialize(inputs=u0)
     names, applied = s.outputs, list(u0)  # (every input the loop sets, recorded as input.<name>)
-    rows = [[0.0] + [s.get(names)[k] for k in names] + [u0[n] for n in applied]]
+    first = [0.0] + [s.get(names)[k] for k in names] + [u0[n] for n in applied]
     watch = CycleWatch(names, angles[0], run_in, config.cycles) if duration is None else None
     total = duration or duration_of(dataclasses.replace(config, run_in=run_in_cycles(config.rpm)))
     prog = Progress(total, "closed loop") if progress else None
     cols = ["time"] + names + [f"input.{n}" for n in applied]
-    k = 0
+    loop_of = compiled_loop if compiled and getattr(inputs, "terms", None) is not None else python_loop
     try:
-        while (k < int(round(duration / step))) if duration is not None else not watch.done(rows):
+        return loop_of(s, config.step, inputs, angles, first, cols, duration or total, watch, prog)
+    finally:
+        if prog:
+            prog.done()
+        s.close()
+
+
+def python_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
+    """run_closed's loop through fmpy's calls, one step at a time (--master-loop python, and the
+    compiled loop's oracle in tests/python/test_loop.py): over `duration` [s], or (a watch) until the
+    watch is done."""
+    names, applied = s.outputs, [c[len("input."):] for c in cols[1 + len(s.outputs):]]
+    rows, k = [first], 0
+    cpu0 = time.thread_time()
+    try:
+        while (k < int(round(duration / step))) if watch is None else not watch.done(rows):
             o = s.get(angles)
             u = inputs(k * step, {name: math.degrees(o[a]) for name, a in zip(inputs.angles, angles)})
             s.step(step, inputs=u, t=k * step)
@@ -223,14 +259,49 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=No
             rows.append([(k + 1) * step] + [v[x] for x in names] + [u[n] for n in applied])
             k += 1
             if prog:
-                prog.update(min((k * step), total))
+                prog.update(min((k * step), prog.total))
     except fmu.Refusal as e:
         raise RunFailed(str(e), {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}) from None
-    finally:
+    loop_cpu = time.thread_time() - cpu0
+    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus, loop_cpu
+
+
+COMPILED_CHUNK = 2000  # steps per call of the compiled loop between progress updates
+
+
+def compiled_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
+    """run_closed's loop in C (fmu/loop.py), as python_loop; called once per engine cycle while a
+    watch waits (it stops on the watch's crank angle) and at most every COMPILED_CHUNK steps; the
+    record as python_loop's (integer outputs as integers)."""
+    if [f"input.{n}" for n in inputs.terms] != cols[1 + len(s.outputs):]:
+        raise ValueError(f"the compiled loop's inputs {list(inputs.terms)} are not the loop's {cols}")
+    runner = loop.CompiledLoop(s, step, angles, inputs.terms, s.outputs, getattr(inputs, "run_up", None))
+    steps = int(round(duration / step))  # (a watch's: its foreseen length, room grows beyond it)
+    rows, cpus = np.empty((steps + 1, len(cols))), np.empty(steps + 1)
+    rows[0], k = first, 0
+    cpu0 = time.thread_time()
+    done = watch.done(rows[:1]) if watch else steps == 0
+    while not done:
+        if k + 1 == rows.shape[0]:  # (the watch's run-in went on longer than foreseen)
+            rows, cpus = np.resize(rows, (2 * rows.shape[0], len(cols))), np.resize(cpus, 2 * rows.shape[0])
+        chunk = min(COMPILED_CHUNK, rows.shape[0] - 1 - k)
+        logged = len(s.messages)
+        ran, refused = runner.run(rows, cpus, k, chunk, *((watch.phi, watch.next - 1e-9) if watch else (-1, 0.0)))
+        k += ran
+        if refused:  # (the FMU logged its reasons during the call)
+            error = fmu.Refusal(s.fmu_name, refused[0], refused[1], s.errors(logged))
+            raise RunFailed(str(error), record_of(rows[:k + 1], cols, s)) from None
         if prog:
-            prog.done()
-        s.close()
-    return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus
+            prog.update(min(k * step, prog.total))
+        done = watch.done(rows[:k + 1]) if watch else k == steps
+    loop_cpu = time.thread_time() - cpu0
+    return record_of(rows[:k + 1], cols, s), cpus[:k].tolist(), loop_cpu
+
+
+def record_of(rows, cols, s):
+    """The record {column: array} of the compiled loop's rows (its integer outputs as integers)."""
+    integers = {n for n in s.outputs if s.type[n] == "Integer"}
+    return {c: rows[:, i].astype(np.int64) if c in integers else rows[:, i].copy() for i, c in enumerate(cols)}
 
 
 class RunFailed(UserError):
@@ -269,8 +340,12 @@ class CycleWatch:
         return False
 
 
+def speed_column(speed):
+    return "crankshaft.speed_rpm" if "crankshaft.speed_rpm" in speed.columns else "crankshaft.w"
+
+
 def speed_at(speed, crank_deg):
-    col = "crankshaft.speed_rpm" if "crankshaft.speed_rpm" in speed.columns else "crankshaft.w"
+    col = speed_column(speed)
     v = float(tables.lookup(speed, col, crank_deg))
     return v * 2.0 * math.pi / 60.0 if col.endswith("_rpm") else v
 
@@ -322,6 +397,8 @@ def add_arguments(ap):
                     help="a constant load torque [N m, positive opposing the rotation] on the loaded sprocket NAME, "
                     "instead of its table (repeatable)")
     ap.add_argument("--coupling", choices=COUPLINGS, default=COUPLINGS[0])
+    ap.add_argument("--master-loop", choices=MASTER_LOOPS, default=MASTER_LOOPS[0],
+                    help="the closed loop in C (default) or through fmpy's calls one by one (the same bits)")
     ap.add_argument("--replicas", type=int, default=1, metavar="K",
                     help="K runs, replica k with the crankshaft-speed input perturbed by a factor 1 + k * 1e-9: "
                     "summary.json then holds the ensemble's statistics, each interval from the spread between "
@@ -461,6 +538,7 @@ class SceneRun:
     duration: float         # [s] simulated
     cpu: float              # [s] CPU time of the whole loop (FMU and master)
     step_cpus: list | None  # [s] CPU time inside each fmi2DoStep (closed loop only)
+    loop_cpu: float | None = None  # [s] the thread's CPU from the first fmi2DoStep to the last (closed loop)
     elements: object = None  # drive.description.Elements of the drive that ran
     loads: dict = dataclasses.field(default_factory=dict)  # {sprocket: where its load came from}
 
@@ -485,7 +563,8 @@ class SceneRun:
                 "runIn": self.settling.json(), "loads": self.loads,
                 "runInCycles": self.run_in, "cycles": config.cycles, "simulated_s": self.duration, "cpu_s": self.cpu,
                 "doStepCpu_s": self.step_cpu, "cpuPerSimulatedSecond": self.cpu / self.duration,
-                "doStepCpuPerSimulatedSecond": per_s}
+                "doStepCpuPerSimulatedSecond": per_s, "masterLoop": config.master_loop if self.loop_cpu else None,
+                "loopCpu_s": self.loop_cpu}
 
 
 def duration_of(config):
@@ -549,14 +628,16 @@ def simulate(config, progress=True):
     cpu0 = time.process_time()
     if config.coupling == "closed":
         inputs = table_inputs(loads, speed, elements, config.supply_pressure, 1.0 + config.speed_perturbation)
-        d, step_cpus = run_closed(config, None, inputs, progress, fmu_file, run_in)
+        d, step_cpus, loop_cpu = run_closed(config, None, inputs, progress, fmu_file, run_in,
+                                            compiled=config.master_loop == "compiled")
         settling = run_in.result
     else:  # (the run-in found afterwards, within the OPEN_RUN_IN_EXTRA cycles the open loop runs more)
         longest = run_in.maximum if run_in.ended else run_in.minimum + OPEN_RUN_IN_EXTRA
+        loop_cpu = None
         d, step_cpus = run_open(config, duration_of(dataclasses.replace(config, run_in=longest)), loads, speed,
                                 elements, fmu_file)
         settling = run_in.result or runin.detect(d, elements.crank, run_in.minimum, longest)
-    return SceneRun(d, settling, float(d["time"][-1]), time.process_time() - cpu0, step_cpus, elements,
+    return SceneRun(d, settling, float(d["time"][-1]), time.process_time() - cpu0, step_cpus, loop_cpu, elements,
                     {name: load.source for name, load in loads.items()})
 
 
@@ -592,7 +673,7 @@ def write_summary(out, summary, cost):
     (out / "run.json").write_text(json.dumps(cost, indent=1) + "\n")
 
 
-def report(summary, scene_run):
+def report(summary, scene_run, config):
     """Prints the cycle statistics and the cost; says so when the confidence half-width of the
     tensioner-force mean exceeds 1 %, with the number of cycles that would bring it to 1 %."""
     print(f"\nsummary: mean over engine cycles after a run-in of {scene_run.run_in} cycles, +- the 95 % confidence "
@@ -610,6 +691,9 @@ def report(summary, scene_run):
     if scene_run.step_cpu is not None:
         print(f"  of which inside fmi2DoStep {scene_run.step_cpu:.2f} s: {scene_run.step_cpu / duration:.3g} CPU s per "
               f"simulated s (the FMU alone)")
+    if scene_run.loop_cpu:
+        print(f"  from the first fmi2DoStep to the last {scene_run.loop_cpu:.2f} s: "
+              f"{scene_run.loop_cpu / scene_run.step_cpu:.3g} times the FMU's (its {config.master_loop} master loop)")
 
 
 def run(config):
@@ -629,7 +713,7 @@ def run(config):
     found, warnings, notes = run_checks(config, scene_run, counted_spans(config, scene_run))
     write_summary(out, summary, dict(scene_run.cost(config), checks=found, warnings=warnings, notes=notes))
     pictures = write_plots(out, d, config, scene_run, per_cycle, summary)
-    report(summary, scene_run)
+    report(summary, scene_run, config)
     print(f"  checks: energy balance {100 * found['energyBalanceError']:+.2f} % of the dissipated energy (limit "
           f"{100 * checks.ENERGY_BALANCE_LIMIT:g} %)")
     checks.print_lines(warnings, notes)

@@ -110,7 +110,7 @@ def run_recorded(config, duration, fmu_dir=None):
     elements = drive_elements(config.drive)
     inputs = job.table_inputs(job.drive_loads(config, elements), tables.crankshaft_speed(config.rpm, config.tables),
                               elements)
-    record, step_cpus = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
+    record, step_cpus, _ = job.run_closed(config, duration, inputs, progress=False, fmu_file=fmu_dir)
     # (the record's inputs of row 0 are those of the initialization, looked up at zero angles)
     applied = {name: np.array(record[f"input.{name}"]) for name in inputs(0.0, {n: 0.0 for n in inputs.angles})}
     outputs = {k: v for k, v in record.items() if k != "time" and not k.startswith("input.")}

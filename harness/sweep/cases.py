@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import cycle_stats, job, paths
 from ..drive.description import elements as drive_elements
-from ..fmu import export, fmu
+from ..fmu import export, fmu, loop
 from ..tables import tables
 
 SPECTRUM_STEP = 0.5         # engine orders per bin of the spectra (half orders: the camshafts')
@@ -190,6 +190,10 @@ def runup_inputs(case, ramp_start, elements):
         out[speed] = fmu.rpm_to_rad_s(rpm) * ((1.0 - w) * fluctuation[0] + w * fluctuation[1])
         return out
     inputs.angles = at_speed[speeds[0]].angles
+    # (the same inputs for the compiled loop: every tabulated speed's terms, blended there)
+    inputs.terms = at_speed[speeds[0]].terms
+    inputs.run_up = loop.RunUp(speeds, [at_speed[r].terms for r in speeds], speed, float(case.rpm),
+                               float(case.rpm_end), float(ramp_start), float(case.ramp_s))
     return inputs
 
 
@@ -200,7 +204,8 @@ def _run_runup(case):
     run_in = job.run_in_cycles(case.rpm)  # (fixed: the ramp starts at a known time)
     ramp_start = run_in * 120.0 / case.rpm
     cpu0 = time.process_time()
-    d, _ = job.run_closed(config, ramp_start + case.ramp_s, runup_inputs(case, ramp_start, elements), progress=False)
+    d, _, _ = job.run_closed(config, ramp_start + case.ramp_s, runup_inputs(case, ramp_start, elements),
+                             progress=False)
     cpu = time.process_time() - cpu0
     per_cycle = cycle_stats.per_cycle(d, run_in, elements)
     spans = cycle_stats.cycle_spans(d[elements.crank + ".phi"], run_in)

@@ -53,7 +53,7 @@ def short_run(supply_bar=3.0, celsius=90.0):
                             oil_temperature=celsius + 273.15)
     inputs = job.table_inputs(job.drive_loads(config, elements()), tables.crankshaft_speed(1000.0), elements(),
                               config.supply_pressure)
-    record, _ = job.run_closed(config, 0.01, inputs, progress=False)
+    record, _, _ = job.run_closed(config, 0.01, inputs, progress=False)
     return record
 
 

@@ -20,7 +20,7 @@ RPM = 2000.0
 def closed_loop_2000():
     config = scene.run_config(rpm=RPM, solver_step=2.5e-6)
     cycle = 120.0 / RPM
-    d, _ = scene.run_closed(config, 3 * cycle, scene.table_inputs(scene.drive_loads(config, elements()),
+    d, _, _ = scene.run_closed(config, 3 * cycle, scene.table_inputs(scene.drive_loads(config, elements()),
                                                                 tables.crankshaft_speed(RPM), elements()))
     return d, d["time"] >= cycle  # the first engine cycle is the start transient
 
