@@ -234,9 +234,12 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=No
     total = duration or duration_of(dataclasses.replace(config, run_in=run_in_cycles(config.rpm)))
     prog = Progress(total, "closed loop") if progress else None
     cols = ["time"] + names + [f"input.{n}" for n in applied]
+    # (the longest the run can be: the compiled loop's record is made that long at once, untouched
+    # memory costing nothing, so that no copy of it between two steps cools the FMU's caches)
+    longest = duration or duration_of(dataclasses.replace(config, run_in=run_in.maximum))
     loop_of = compiled_loop if compiled and getattr(inputs, "terms", None) is not None else python_loop
     try:
-        return loop_of(s, config.step, inputs, angles, first, cols, duration or total, watch, prog)
+        return loop_of(s, config.step, inputs, angles, first, cols, longest, watch, prog)
     finally:
         if prog:
             prog.done()
@@ -276,10 +279,16 @@ def compiled_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
     if [f"input.{n}" for n in inputs.terms] != cols[1 + len(s.outputs):]:
         raise ValueError(f"the compiled loop's inputs {list(inputs.terms)} are not the loop's {cols}")
     runner = loop.CompiledLoop(s, step, angles, inputs.terms, s.outputs, getattr(inputs, "run_up", None))
-    steps = int(round(duration / step))  # (a watch's: its foreseen length, room grows beyond it)
+    steps = int(round(duration / step))  # (a watch's: the longest it can run, room grows beyond it)
     rows, cpus = np.empty((steps + 1, len(cols))), np.empty(steps + 1)
-    rows[0], k = first, 0
+    rows[0] = first
     cpu0 = time.thread_time()
+    return compiled_steps(s, runner, rows, cpus, step, cols, steps, watch, prog, cpu0)
+
+
+def compiled_steps(s, runner, rows, cpus, step, cols, steps, watch, prog, cpu0):
+    """compiled_loop's steps from row 0 on: (record, step CPUs, loop CPU)."""
+    k = 0
     done = watch.done(rows[:1]) if watch else steps == 0
     while not done:
         if k + 1 == rows.shape[0]:  # (the watch's run-in went on longer than foreseen)

@@ -82,6 +82,9 @@ def add_arguments(ap):
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
     ap.add_argument("--load", action="append", default=[], metavar="NAME=VALUE",
                     help="a constant load torque [N m] on the loaded sprocket NAME instead of its table (repeatable)")
+    ap.add_argument("--master-loop", choices=job.MASTER_LOOPS, default=job.MASTER_LOOPS[0],
+                    help="the closed loop compiled (default) or through fmpy's calls (the same bits; the model's CPU "
+                    "differs with what the loop does to the caches between the steps)")
     ap.add_argument("--out", default=str(paths.RESULTS / "benchmark_realtime.md"))
 
 
@@ -111,7 +114,8 @@ def scene_config(args, rpm):
     """The main job's configuration at one speed (no --solver-step: the fidelity's default)."""
     return job.run_config(rpm=rpm, cycles=args.cycles, method=args.method, newmark_gamma=args.newmark_gamma,
                           solver_step=args.solver_step or None, drive=getattr(args, "drive", None),
-                          tables=getattr(args, "tables", None), loads=getattr(args, "loads", ()))
+                          tables=getattr(args, "tables", None), loads=getattr(args, "loads", ()),
+                          master_loop=getattr(args, "master_loop", None))
 
 
 def spread(cpu):
@@ -133,7 +137,7 @@ def timing(scene_runs, steps_per_cycle):
     return dict(rtf=[r.step_cpu / r.duration for r in scene_runs], steps=len(model), runs=len(scene_runs),
                 rtfModel=math.fsum(all_steps.min(axis=0)) / scene_runs[0].duration,
                 model=spread(model), measured=spread(per_run[0]), by_angle=float(by_angle.max() / by_angle.min()),
-                cycles=cycles)
+                cycles=cycles, first=float(all_steps[:, 0].min()))
 
 
 def host_speed():
@@ -180,7 +184,8 @@ def timing_lines(rpm, t, step):
             f"the {t['runs']} runs): {spread_text(model)} (targets: p99 / median <= {P99_TARGET:g}: "
             f"{verdict(p99 <= P99_TARGET)}; max / median <= {MAX_TARGET:g}: {verdict(mx <= MAX_TARGET)})",
             f"- the same as measured in the first run (the machine's interruptions included): "
-            f"{spread_text(t['measured'])}",
+            f"{spread_text(t['measured'])}; the first step after the initialization (left out above): "
+            f"{t.get('first', math.nan) * 1e6:.0f} us",
             f"- the model's own spread: the median over {t['cycles']} cycles at each crank angle varies by a factor "
             f"{t['by_angle']:.2f} over the cycle"]
 
@@ -264,7 +269,7 @@ def speed_record(rpm, config, t, rows):
     (empty without a reference)."""
     return dict(rpm=rpm, method=config.method, step=config.solver_step, cycles=config.cycles,
                 rtf=max(t["rtf"]), rtfRuns=t["rtf"], rtfModel=t["rtfModel"], rtfTarget=RTF_TARGET.get(rpm),
-                model=t["model"],
+                model=t["model"], firstStep=t["first"], masterLoop=config.master_loop,
                 p99OverMedian=t["model"]["p99"] / t["model"]["median"], accuracy=rows)
 
 
@@ -284,8 +289,8 @@ def run(args):
             return 1
         scene_run = scene_runs[0]
         _, summary = job.cycle_statistics(config, scene_run)
-        section = [f"## {rpm:g} rpm: {config.method} at {config.solver_step * 1e6:g} us, closed loop, {args.cycles} "
-                   f"cycles after {scene_run.run_in} run-in", ""]
+        section = [f"## {rpm:g} rpm: {config.method} at {config.solver_step * 1e6:g} us, closed loop "
+                   f"({config.master_loop} master loop), {args.cycles} cycles after {scene_run.run_in} run-in", ""]
         steps_per_cycle = round(120.0 / rpm / config.step)  # (an engine cycle: two crank revolutions)
         t = timing(scene_runs, steps_per_cycle)
         section += timing_lines(rpm, t, config.step) + [""]

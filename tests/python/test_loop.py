@@ -112,3 +112,13 @@ def test_both_loops_give_the_same_run_up():
     same_records(*records)
     speed = records[0]["input.crankshaft.w"]
     assert speed[-1] > 3000.0 * math.pi / 30.0 > 2000.0 * math.pi / 30.0 > speed[1]
+
+
+def test_short_loop_benchmark_compares_both_loops(tmp_path):
+    from harness import cli
+    out = tmp_path / "loop.md"
+    # (a record of one loop that differs from the other's raises: the run returning 0 says they agree)
+    assert cli.main(["bench-loop", "--rpm", "3000", "--fidelities", "span", "--cycles", "1", "--repeats", "1",
+                     "--out", str(out)]) == 0
+    row = next(line for line in out.read_text().splitlines() if line.startswith("| 3000 | span |"))
+    assert len(row.split("|")) == 12 and "**" in row
