@@ -153,7 +153,6 @@ class CompiledLoop:
     def __init__(self, slave, step, angles, terms, outputs, run_up=None):
         self.lib, self.slave = library(), slave
         fmu2 = slave.slave
-        pointer = lambda name: ctypes.cast(getattr(fmu2.dll, name), ctypes.c_void_p).value  # noqa: E731
         reals = [i for i, n in enumerate(outputs) if slave.type[n] == "Real"]
         integers = [i for i, n in enumerate(outputs) if slave.type[n] == "Integer"]
         self.n_columns = 1 + len(outputs) + len(terms)
@@ -170,8 +169,9 @@ class CompiledLoop:
         c_terms = (_Term * max(len(terms), 1))(*[_c_term(t) for t in terms.values()])
         self._terms, self._tables = c_terms, list(terms.values())
         self._run_up = self._c_run_up(run_up, list(terms)) if run_up else None
-        self.loop = _Loop(component=fmu2.component, doStep=pointer("fmi2DoStep"), setReal=pointer("fmi2SetReal"),
-                          getReal=pointer("fmi2GetReal"), getInteger=pointer("fmi2GetInteger"), step=step,
+        functions = {f: ctypes.cast(getattr(fmu2.dll, "fmi2" + f[0].upper() + f[1:]), ctypes.c_void_p).value
+                     for f in ("doStep", "setReal", "getReal", "getInteger")}  # (the FMU's, as fmpy loaded it)
+        self.loop = _Loop(component=fmu2.component, **functions, step=step,
                           nAngles=len(angles), nInputs=len(terms), nReals=len(reals), nIntegers=len(integers),
                           nColumns=self.n_columns, firstInputColumn=1 + len(outputs),
                           terms=ctypes.addressof(c_terms),
