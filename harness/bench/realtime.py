@@ -54,6 +54,9 @@ from ..study import ladder
 # frame (room for I/O, the rest of the plant and several drives per core); spread targets
 RTF_TARGET = {3000.0: 0.25, 6000.0: 0.35}
 P99_TARGET, MAX_TARGET = 1.5, 3.0  # p99 / median and max / median of the CPU per fmi2DoStep
+# [s] the model's worst fmi2DoStep of 0.1 ms (each step's least CPU over the runs): well inside a
+# 10 kHz hardware-in-the-loop frame, room left for the rig's own I/O
+WORST_STEP_TARGET = 60e-6
 # the host's speed: the solver alone on the default drive, plain Verlet at 2.5 us
 HOST_WORKLOAD = dict(rpm=3000.0, integrator="fixed-verlet", step=2.5e-6, output_step=1e-3)
 HOST_DURATIONS, HOST_REPEATS = (0.1, 0.3), 3
@@ -182,7 +185,8 @@ def timing_lines(rpm, t, step):
                f"the runs: {t['rtfModel']:.3g})" if t["runs"] > 1 else ""),
             f"- CPU per fmi2DoStep of {step * 1e3:g} ms over {t['steps']} steps, the model's (each step's minimum over "
             f"the {t['runs']} runs): {spread_text(model)} (targets: p99 / median <= {P99_TARGET:g}: "
-            f"{verdict(p99 <= P99_TARGET)}; max / median <= {MAX_TARGET:g}: {verdict(mx <= MAX_TARGET)})",
+            f"{verdict(p99 <= P99_TARGET)}; max / median <= {MAX_TARGET:g}: {verdict(mx <= MAX_TARGET)}; max <= "
+            f"{WORST_STEP_TARGET * 1e6:g} us: {verdict(model['max'] <= WORST_STEP_TARGET)})",
             f"- the same as measured in the first run (the machine's interruptions included): "
             f"{spread_text(t['measured'])}; the first step after the initialization (left out above): "
             f"{t.get('first', math.nan) * 1e6:.0f} us",
