@@ -283,11 +283,12 @@ def compiled_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
     rows, cpus = np.empty((steps + 1, len(cols))), np.empty(steps + 1)
     rows[0] = first
     cpu0 = time.thread_time()
-    return compiled_steps(s, runner, rows, cpus, step, cols, steps, watch, prog, cpu0)
+    return compiled_steps(s, runner, inputs, rows, cpus, step, cols, steps, watch, prog, cpu0)
 
 
-def compiled_steps(s, runner, rows, cpus, step, cols, steps, watch, prog, cpu0):
-    """compiled_loop's steps from row 0 on: (record, step CPUs, loop CPU)."""
+def compiled_steps(s, runner, inputs, rows, cpus, step, cols, steps, watch, prog, cpu0):
+    """compiled_loop's steps from row 0 on, each call's last step's inputs checked against the
+    inputs function's: (record, step CPUs, loop CPU)."""
     k = 0
     done = watch.done(rows[:1]) if watch else steps == 0
     while not done:
@@ -300,11 +301,26 @@ def compiled_steps(s, runner, rows, cpus, step, cols, steps, watch, prog, cpu0):
         if refused:  # (the FMU logged its reasons during the call)
             error = fmu.Refusal(s.fmu_name, refused[0], refused[1], s.errors(logged))
             raise RunFailed(str(error), record_of(rows[:k + 1], cols, s)) from None
+        if ran:
+            same_inputs(inputs, rows, k - 1, step, cols)
         if prog:
             prog.update(min(k * step, prog.total))
         done = watch.done(rows[:k + 1]) if watch else k == steps
     loop_cpu = time.thread_time() - cpu0
     return record_of(rows[:k + 1], cols, s), cpus[:k].tolist(), loop_cpu
+
+
+def same_inputs(inputs, rows, j, step, cols):
+    """Step j's inputs as the compiled loop set them (row j + 1) against the Python look-up at the
+    angles it read (row j), bit for bit: terms that no longer say what the inputs function says
+    stop the run instead of driving it with other inputs."""
+    angles = {name: math.degrees(rows[j][cols.index(f"{name}.phi")]) for name in inputs.angles}
+    expected = inputs(j * step, angles)
+    for name, value in expected.items():
+        got = rows[j + 1][cols.index(f"input.{name}")]
+        if got != value:
+            raise RuntimeError(f"the compiled loop's input {name} at step {j} is {got!r}, the inputs' look-up "
+                               f"{value!r}: its terms (harness/fmu/loop.py) do not match the inputs function")
 
 
 def record_of(rows, cols, s):

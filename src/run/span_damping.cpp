@@ -194,11 +194,9 @@ MeasuredMode modeFrom(const json& j) {
 }
 
 bool readCachedDamping(const std::string& file, SpanDampingCalibration& c) {
-  std::ifstream in(utf8Path(file), std::ios::binary);
-  if (!in) return false;
+  json j;
+  if (!span::readCacheFile(file, kDampingCacheFormat, j)) return false;
   try {
-    const json j = json::parse(in);
-    if (j.at("format") != kDampingCacheFormat) return false;
     c.identified = j.at("identified");
     c.scale = number(j.at("scale"));
     c.link = modeFrom(j.at("link"));

@@ -46,11 +46,9 @@ std::string cacheFile(const Model& m, IntegratorMethod method, long long fromDiv
 
 // The cached ladder, if the file holds one (a damaged or foreign file: none, probed afresh).
 bool readCached(const std::string& file, ProbedStep& p) {
-  std::ifstream in(utf8Path(file), std::ios::binary);
-  if (!in) return false;
+  json j;
+  if (!span::readCacheFile(file, kCacheFormat, j)) return false;
   try {
-    const json j = json::parse(in);
-    if (j.at("format") != kCacheFormat) return false;
     ProbedStep c;
     c.divisions = j.at("divisions");
     c.passed = j.at("passed");

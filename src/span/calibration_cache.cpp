@@ -132,6 +132,17 @@ bool writeCacheFile(const std::string& dir, const std::string& file, const std::
   return !error;
 }
 
+bool readCacheFile(const std::string& file, int format, nlohmann::json& j) {
+  std::ifstream in(utf8Path(file), std::ios::binary);
+  if (!in) return false;
+  try {
+    j = nlohmann::json::parse(in);
+    return j.at("format") == format;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
 std::string calibrationKey(const Model& m) {
   const TensionerDesc& t = m.description.tensioner;
   // the FMU's parameters that override the description, by their bits (printf's %a differs

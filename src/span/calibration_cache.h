@@ -13,6 +13,8 @@
 
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "span/span_calibration.h"
 
 namespace chaindrive::span {
@@ -31,6 +33,10 @@ std::string calibrationCacheDir();
 /// renamed into place, so that an instance reading meanwhile sees the old file or the new. False
 /// when it cannot be written (no cache: the caller computes again next time).
 bool writeCacheFile(const std::string& dir, const std::string& file, const std::string& text);
+
+/// The JSON of a cache file written with `format` (its "format" field) into j; false when the
+/// file is missing, not JSON or of another format (the caller computes afresh).
+bool readCacheFile(const std::string& file, int format, nlohmann::json& j);
 
 /// Where a calibration came from.
 enum class CalibrationOrigin { File, Cache, Identified, None };

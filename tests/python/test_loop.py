@@ -122,3 +122,12 @@ def test_short_loop_benchmark_compares_both_loops(tmp_path):
                      "--out", str(out)]) == 0
     row = next(line for line in out.read_text().splitlines() if line.startswith("| 3000 | span |"))
     assert len(row.split("|")) == 12 and "**" in row
+
+
+def test_terms_that_say_other_inputs_stop_the_compiled_loop():
+    config = job.run_config(rpm=3000.0, cycles=2, fidelity="span")
+    elements = drive_elements(None)
+    inputs = job.table_inputs(job.drive_loads(config, elements), tables.crankshaft_speed(3000.0), elements)
+    inputs.terms["crankshaft.w"].a = 1.0 + 1e-12  # (a perturbed speed the Python look-up does not apply)
+    with pytest.raises(RuntimeError, match="input crankshaft.w at step"):
+        job.run_closed(config, 0.01, inputs, progress=False)
