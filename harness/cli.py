@@ -15,6 +15,7 @@
     python -m harness realtime-floor the floor under the routes to a quarter of real time (harness/bench/realtime_floor.py)
     python -m harness bench-fidelity the span model's cost against the real-time method's (harness/bench/fidelity_cost.py)
     python -m harness bench-loop     the main job's loop compiled against fmpy's calls (harness/bench/master_loop.py)
+    python -m harness bench-threads  solver.threads on 1 and 2 threads: wall clock and barriers (harness/bench/threads.py)
     python -m harness bench-lcp      LCP solver against Siconos (harness/bench/benchmark_lcp.py)
     python -m harness bench-sweep    a sweep on 1 and 2 Dask workers and in a plain loop (harness/bench/sweep.py)
     python -m harness tables         the SYNTHESIZED input tables (harness/tables/make_tables.py)
@@ -77,6 +78,8 @@ COMMANDS = {
                        "method through ChainDrive.fmu, in one run"),
     "bench-loop": ("harness.bench.master_loop", "the main job's closed loop compiled against fmpy's calls: each "
                    "one's CPU beyond the FMU's, in one run"),
+    "bench-threads": ("harness.bench.threads", "solver.threads: one instance's step on 1 and 2 threads, by turns: "
+                      "wall clock, CPU, barriers per step and the pool's own cost"),
     "bench-lcp": ("harness.bench.benchmark_lcp", "our LCP solver against Siconos numerics"),
     "bench-sweep": ("harness.bench.sweep", "the same sweep on 1 and 2 Dask workers and in a plain loop: speed-up and "
                     "Dask's overhead per case"),

@@ -111,6 +111,7 @@ class RunConfig:
     notes: tuple = ()                    # note lines on the options (given, but without effect on this drive)
     loads: tuple = ()                    # ((sprocket, torque [N m]), ...): constant loads (--load NAME=VALUE)
     master_loop: str = MASTER_LOOPS[0]   # the closed loop's: compiled (fmu/loop.py) or python (fmpy's calls)
+    threads: int = 1                     # FMU parameter solver.threads (more than 1: steps timed by the wall clock)
 
 
 def drive_clearance_or_rigid(path):
@@ -174,6 +175,8 @@ def parameters_of(config):
     """The FMU's parameters of a run."""
     p = {"fidelity": config.fidelity, "solver.method": config.method, "solver.step": config.solver_step,
          "solver.tolerance": config.rtol, "solver.newmarkGamma": config.newmark_gamma}
+    if config.threads != 1:  # (left out at 1, its default: the FMUs of every drive take it)
+        p["solver.threads"] = config.threads
     if is_hydraulic(drive_json(config.drive)):  # (a drive with another tensioner has no such parameter)
         p["tensioner.oilTemperature"] = config.oil_temperature
     return p
@@ -224,7 +227,8 @@ def run_closed(config, duration, inputs, progress=True, fmu_file=None, run_in=No
     Returns (record, CPU seconds spent inside each fmi2DoStep, the thread's CPU seconds from the
     first fmi2DoStep to the last: the FMU's and the loop's own). A step the FMU refuses (a blow-up:
     fmi2Discard) raises RunFailed with the record up to the failure."""
-    s = fmu.Slave("chaindrive", fmu=fmu_file or export.fmu_for(config.drive), parameters=parameters_of(config))
+    s = fmu.Slave("chaindrive", fmu=fmu_file or export.fmu_for(config.drive), parameters=parameters_of(config),
+                  wall_clock=config.threads > 1)
     angles = [f"{name}.phi" for name in inputs.angles]
     u0 = inputs(0.0, {name: 0.0 for name in inputs.angles})
     s.initialize(inputs=u0)
@@ -252,7 +256,7 @@ def python_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
     watch is done."""
     names, applied = s.outputs, [c[len("input."):] for c in cols[1 + len(s.outputs):]]
     rows, k = [first], 0
-    cpu0 = time.thread_time()
+    cpu0 = s.clock()
     try:
         while (k < int(round(duration / step))) if watch is None else not watch.done(rows):
             o = s.get(angles)
@@ -265,7 +269,7 @@ def python_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
                 prog.update(min((k * step), prog.total))
     except fmu.Refusal as e:
         raise RunFailed(str(e), {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}) from None
-    loop_cpu = time.thread_time() - cpu0
+    loop_cpu = s.clock() - cpu0
     return {c: np.array([r[i] for r in rows]) for i, c in enumerate(cols)}, s.step_cpus, loop_cpu
 
 
@@ -282,7 +286,7 @@ def compiled_loop(s, step, inputs, angles, first, cols, duration, watch, prog):
     steps = int(round(duration / step))  # (a watch's: the longest it can run, room grows beyond it)
     rows, cpus = np.empty((steps + 1, len(cols))), np.empty(steps + 1)
     rows[0] = first
-    cpu0 = time.thread_time()
+    cpu0 = s.clock()
     return compiled_steps(s, runner, inputs, rows, cpus, step, cols, steps, watch, prog, cpu0)
 
 
@@ -306,7 +310,7 @@ def compiled_steps(s, runner, inputs, rows, cpus, step, cols, steps, watch, prog
         if prog:
             prog.update(min(k * step, prog.total))
         done = watch.done(rows[:k + 1]) if watch else k == steps
-    loop_cpu = time.thread_time() - cpu0
+    loop_cpu = s.clock() - cpu0
     return record_of(rows[:k + 1], cols, s), cpus[:k].tolist(), loop_cpu
 
 

@@ -89,13 +89,19 @@ struct FirstLanes {
 
 /// Calls body(i, lanes) for i = 0, W, 2 W, ... below n: lanes is AllLanes for the whole vectors,
 /// FirstLanes for a last, partly filled one (the body is compiled for each: the whole vectors'
-/// loop has no test per lane). The body must be always inlined.
+/// loop has no test per lane). The body must be always inlined. forEachVectorIn: the same from
+/// `first` (a multiple of W) below `last`.
+template <class V, class Body>
+CHAINDRIVE_ALWAYS_INLINE void forEachVectorIn(int first, int last, Body body) {
+  constexpr int W = lanesOf<V>();
+  int i = first;
+  for (; i + W <= last; i += W) body(i, AllLanes<V>{});
+  if (i < last) body(i, FirstLanes<V>{last - i});
+}
+
 template <class V, class Body>
 CHAINDRIVE_ALWAYS_INLINE void forEachVector(int n, Body body) {
-  constexpr int W = lanesOf<V>();
-  int i = 0;
-  for (; i + W <= n; i += W) body(i, AllLanes<V>{});
-  if (i < n) body(i, FirstLanes<V>{n - i});
+  forEachVectorIn<V>(0, n, body);
 }
 
 /// Every lane x.
@@ -195,5 +201,15 @@ CHAINDRIVE_ALWAYS_INLINE double sqrt(double v) { return std::sqrt(v); }
 /// Sum of four partial sums in one fixed order: sums over the links are kept in four partial
 /// sums (link i in sum i mod 4) whatever the vector width, then combined here.
 CHAINDRIVE_ALWAYS_INLINE double reduce4(const double s[4]) { return ((s[0] + s[1]) + s[2]) + s[3]; }
+
+/// The four partial sums kept in vectors of W lanes (sum h W + l in lane l of partial[h]) into
+/// one, by reduce4.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE double reducePartials(const typename Lanes<W>::V (&partial)[4 / W]) {
+  double sums[4];
+  for (int h = 0; h < 4 / W; ++h)
+    for (int l = 0; l < W; ++l) sums[h * W + l] = partial[h][l];
+  return reduce4(sums);
+}
 
 }  // namespace chaindrive::simd

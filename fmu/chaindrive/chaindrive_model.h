@@ -48,7 +48,10 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
   void evaluateOutputs() { out_ = sim_->outputs(); }
   double* realSetting(unsigned vr);  // a Real parameter or input; nullptr for others
   std::string* stringParameter(unsigned vr);
-  int* integerParameter(unsigned vr) { return bindingOf(vr) == Binding::LinkIndex ? &params_.linkIndex : nullptr; }
+  int* integerParameter(unsigned vr) {
+    const Binding b = bindingOf(vr);
+    return b == Binding::LinkIndex ? &params_.linkIndex : b == Binding::SolverThreads ? &params_.threads : nullptr;
+  }
   bool* booleanParameter(unsigned vr) { return bindingOf(vr) == Binding::SolverPreload ? &params_.preload : nullptr; }
   bool readRealOutput(unsigned vr, double& value) const;
   bool readIntegerOutput(unsigned vr, int& value) const;
@@ -73,6 +76,7 @@ class ChainDriveModel : public SimulationAdapter<ChainDriveModel, kChainDriveInp
     double tolerance = solverDefaults(Scene::TimingDrive).tolerance;
     double step = 0.0;
     double newmarkGamma = 0.5;
+    int threads = 1;
     bool preload = true;
     double tensionerPreload = -1.0, tensionerStiffness = -1.0, tensionerDamping = -1.0,
            tensionerDampingExtension = -1.0;

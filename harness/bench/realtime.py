@@ -85,6 +85,8 @@ def add_arguments(ap):
     ap.add_argument("--tables", help="directory of the torque/speed tables (default harness/tables/data)")
     ap.add_argument("--load", action="append", default=[], metavar="NAME=VALUE",
                     help="a constant load torque [N m] on the loaded sprocket NAME instead of its table (repeatable)")
+    ap.add_argument("--threads", type=int, default=1,
+                    help="FMU parameter solver.threads; more than 1: every step timed by the wall clock")
     ap.add_argument("--master-loop", choices=job.MASTER_LOOPS, default=job.MASTER_LOOPS[0],
                     help="the closed loop compiled (default) or through fmpy's calls (the same bits; the model's CPU "
                     "differs with what the loop does to the caches between the steps)")
@@ -118,7 +120,7 @@ def scene_config(args, rpm):
     return job.run_config(rpm=rpm, cycles=args.cycles, method=args.method, newmark_gamma=args.newmark_gamma,
                           solver_step=args.solver_step or None, drive=getattr(args, "drive", None),
                           tables=getattr(args, "tables", None), loads=getattr(args, "loads", ()),
-                          master_loop=getattr(args, "master_loop", None))
+                          master_loop=getattr(args, "master_loop", None), threads=getattr(args, "threads", None))
 
 
 def spread(cpu):
@@ -295,6 +297,9 @@ def run(args):
         _, summary = job.cycle_statistics(config, scene_run)
         section = [f"## {rpm:g} rpm: {config.method} at {config.solver_step * 1e6:g} us, closed loop "
                    f"({config.master_loop} master loop), {args.cycles} cycles after {scene_run.run_in} run-in", ""]
+        if config.threads > 1:
+            section += [f"On {config.threads} threads (solver.threads): every time below is the wall clock's, not "
+                        "the calling thread's CPU time", ""]
         steps_per_cycle = round(120.0 / rpm / config.step)  # (an engine cycle: two crank revolutions)
         t = timing(scene_runs, steps_per_cycle)
         section += timing_lines(rpm, t, config.step) + [""]

@@ -53,6 +53,7 @@ typedef struct {
   const RunUp* runUp; /* or NULL: the terms alone */
   double *angles, *inputs, *reals; /* work areas of nAngles, nInputs, nReals and nIntegers */
   fmi2Integer* integers;
+  int wallClock; /* a step's time by the wall clock (the FMU's step on several threads), else this thread's CPU */
 } Loop;
 
 /* Python's max and min (the first argument unless the second is greater, or smaller) */
@@ -137,9 +138,9 @@ static void runUpInputs(const Loop* L, const RunUp* R, double t) {
   }
 }
 
-static double threadSeconds(void) {
+static double stepClock(const Loop* L) {
   struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  clock_gettime(L->wallClock ? CLOCK_MONOTONIC : CLOCK_THREAD_CPUTIME_ID, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -155,9 +156,9 @@ static fmi2Status oneStep(const Loop* L, long k, double* row, double* cpu, int* 
     for (int i = 0; i < L->nInputs; ++i) L->inputs[i] = inputValue(&L->terms[i], L->angles);
   s = L->setReal(L->component, L->inputRefs, (size_t)L->nInputs, L->inputs);
   if (s > fmi2Warning) return *call = 1, s;
-  const double cpu0 = threadSeconds();
+  const double cpu0 = stepClock(L);
   s = L->doStep(L->component, (double)k * L->step, L->step, fmi2True);
-  *cpu = threadSeconds() - cpu0;
+  *cpu = stepClock(L) - cpu0;
   if (s > fmi2Warning) return *call = 2, s;
   s = L->getReal(L->component, L->realRefs, (size_t)L->nReals, L->reals);
   if (s <= fmi2Warning && L->nIntegers > 0)

@@ -93,7 +93,8 @@ class _Loop(ctypes.Structure):
                 *[(n, ctypes.c_void_p) for n in ("angleRefs", "inputRefs", "realRefs", "integerRefs",
                                                   "realColumns", "integerColumns")],
                 ("firstInputColumn", ctypes.c_int), ("terms", ctypes.c_void_p), ("runUp", ctypes.c_void_p),
-                *[(n, ctypes.c_void_p) for n in ("angles", "inputs", "reals", "integers")]]
+                *[(n, ctypes.c_void_p) for n in ("angles", "inputs", "reals", "integers")],
+                ("wallClock", ctypes.c_int)]
 
 
 @functools.lru_cache(maxsize=None)
@@ -176,7 +177,7 @@ class CompiledLoop:
                           nColumns=self.n_columns, firstInputColumn=1 + len(outputs),
                           terms=ctypes.addressof(c_terms),
                           runUp=ctypes.addressof(self._run_up[0]) if run_up else None,
-                          **{k: v.ctypes.data for k, v in self._keep.items()})
+                          **{k: v.ctypes.data for k, v in self._keep.items()}, wallClock=int(slave.wall_clock))
 
     def _c_run_up(self, run_up, names):
         """(the C structure, what it points into) of a RunUp whose inputs are `names`."""

@@ -51,4 +51,13 @@ DriveDescription loadDrive(const std::string& path) {
   return path.empty() ? defaultDriveDescription() : loadDriveDescription(path);
 }
 
+int Arguments::wholeNumber(int least, int most) {
+  const std::string text = value();
+  const double x = number(text);
+  if (x != static_cast<double>(static_cast<long long>(x)) || x < least || x > most)
+    throw std::invalid_argument("option " + current_ + ": '" + text + "' is not a whole number from " +
+                                std::to_string(least) + " to " + std::to_string(most));
+  return static_cast<int>(x);
+}
+
 }  // namespace chaindrive::cli

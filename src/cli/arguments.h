@@ -33,6 +33,8 @@ class Arguments {
   double number(const std::string& text) const;
   /// value() as a choice (choice.h); throws std::invalid_argument ("option X: 'S' is unknown;
   /// allowed: ...").
+  /// value() as a whole number from `least` to `most`; throws std::invalid_argument naming them.
+  int wholeNumber(int least, int most);
   template <class E>
   E choice() {
     return parseChoice<E>(value(), "option " + current_);

@@ -114,12 +114,19 @@ TensionerResult tensionerForce(const TensionerModel& t, Vec2 pivot, double cosA,
   return r;
 }
 
-void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated) {
-  const int n = m.chain.links;
-  // link weight
+void addLinkWeight(const Model& m, Data& d, LinkRange r) {
   const Vec2 w = m.chain.mass * m.gravity;
-  if (w.x != 0.0) addConstant(&d.gen[m.linkGen(0, Model::kX)], w.x, n);  // (component by component)
-  if (w.y != 0.0) addConstant(&d.gen[m.linkGen(0, Model::kY)], w.y, n);
+  const int n = r.last - r.first;
+  if (w.x != 0.0) addConstant(&d.gen[m.linkGen(r.first, Model::kX)], w.x, n);  // (component by component)
+  if (w.y != 0.0) addConstant(&d.gen[m.linkGen(r.first, Model::kY)], w.y, n);
+}
+
+void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated) {
+  addLinkWeight(m, d, {0, m.chain.links});
+  evaluateRotorBodyForces(m, d, powerInput, powerDissipated);
+}
+
+void evaluateRotorBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated) {
   TensionerResult t;
   evaluateRotorForces(m, d.inputs, d.rotorCos.data(), d.rotorSin.data(), d.rotorRate.data(), d.chamber,
                       d.gen.data() + m.rotorGen(0), t, powerInput, powerDissipated);

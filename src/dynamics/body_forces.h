@@ -53,6 +53,9 @@ double tensionerOilViscosity(const TensionerModel& t);
 
 /// Adds the body forces to d.gen, sets the tensioner outputs; returns {input power, dissipated power}.
 void evaluateBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated);
+/// Its two parts: the links' weight (links of range r), and the rest (rotors, tensioner).
+void addLinkWeight(const Model& m, Data& d, LinkRange r);
+void evaluateRotorBodyForces(const Model& m, Data& d, double& powerInput, double& powerDissipated);
 
 /// The body forces on the rotors alone, shared by the link and span models: guide pivot friction
 /// and weight, the tensioner, load torques on free sprockets and the power of the prescribed

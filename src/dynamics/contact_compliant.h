@@ -104,11 +104,14 @@ inline void addContactDamping(const Model& m, const ContactLaw& law, const Conta
 }
 
 /// Adds the generalized forces of contact c (forces c.fN, c.fT) to the link and rotor entries.
-inline void addContactGen(const Model& m, const ContactPoint& c, double* gen) {
-  const Vec2 f = contactForce(c);
+inline void addContactLinkGen(const Model& m, const ContactPoint& c, Vec2 f, double* gen) {
   gen[m.linkGen(c.link, Model::kX)] += f.x;
   gen[m.linkGen(c.link, Model::kY)] += f.y;
   gen[m.linkGen(c.link, Model::kGamma)] += cross(c.rLink, f);
+}
+inline void addContactGen(const Model& m, const ContactPoint& c, double* gen) {
+  const Vec2 f = contactForce(c);
+  addContactLinkGen(m, c, f, gen);
   if (c.rotor >= 0) gen[m.rotorGen(c.rotor)] -= cross(c.rRotor, f);
 }
 
@@ -119,6 +122,18 @@ inline double addCompliantForce(const Model& m, const ContactLaw& law, ContactPo
   addContactGen(m, c, d.gen.data());
   d.deepestGap = std::min(d.deepestGap, c.gap);
   return power;
+}
+
+/// addCompliantForce for a plate contact found by one of several threads (the link is the
+/// thread's): the forces on the link added, its share of the guide's rotor and its power kept in
+/// the thread's part (face `face` of d.placedFaces), in link order, for plateSums.
+inline void sharePlateForce(const Model& m, ContactPoint& c, Data& d, ThreadPart& part, int face) {
+  const double power = compliantContactForce(m.plateGuide, m.frictionRegularization, c).power;
+  const Vec2 f = contactForce(c);
+  addContactLinkGen(m, c, f, d.gen.data());
+  PlateShare& share = part.plates[static_cast<std::size_t>(face * m.chain.links + part.plateCount[face]++)];
+  share = {c.link, c.rotor >= 0 ? cross(c.rRotor, f) : 0.0, power};
+  part.deepestGap = std::min(part.deepestGap, c.gap);
 }
 
 

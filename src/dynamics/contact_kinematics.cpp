@@ -43,6 +43,10 @@ LinkKin linkKinematics(const Model& m, const double* y, int link) {
 
 void evaluateKinematics(const Model& m, Data& d, const double* y) {
   linkKinematicsLoop(m, d, y);
+  rotorKinematics(m, d, y);
+}
+
+void rotorKinematics(const Model& m, Data& d, const double* y) {
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];
     const double a = y[ro.stateAngle];
@@ -157,50 +161,62 @@ bool plateGuideKinematics(const Model& m, int guide, int face, const PlacedFace&
 
 namespace {
 
-// The links near a guide against its faces, in the order of guides, faces and links: arc faces
-// several links at a time (contact_lanes.h), line faces one at a time.
+// Calls f(i) for every link of the thread's part (all links without one), in increasing order.
+template <class F>
+void forEachOwnLink(const Model& m, const ThreadPart* part, F f) {
+  if (!part) {
+    for (int i = 0; i < m.chain.links; ++i) f(i);
+    return;
+  }
+  for (const LinkRange& r : part->ranges)
+    for (int i = r.first; i < r.last; ++i) f(i);
+}
+
+// The links near a guide against its faces (placed in d.placedFaces), in the order of guides, faces
+// and links: arc faces several links at a time (contact_lanes.h), line faces one at a time. With a
+// thread's part, its links only, the forces shared (sharePlateForce).
 int detectPlateContacts(const Model& m, Data& d, double margin, double reachLink, bool forces, int count,
-                        double& power) {
+                        double& power, ThreadPart* part) {
   const int cap = static_cast<int>(d.contacts.size());
   const bool list = d.listsContacts(forces);
-  std::size_t firstFace = 0;  // of the guide, in d.placedFaces
+  int faceIndex = 0;  // in d.placedFaces
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
-    const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
-    const double sinA = g.rotor >= 0 ? d.rotorSin[g.rotor] : 0.0;
     const double rate = g.rotor >= 0 ? d.rotorRate[g.rotor] : 0.0;
     const Vec2 bc{d.guideBoundX[gi], d.guideBoundY[gi]};
     const double reach2 = d.guideReach2[gi];
-    for (std::size_t f = 0; f < g.faces.size(); ++f) {
-      PlacedFace& pf = d.placedFaces[firstFace + f];
-      pf = placeFace(g.faces[f], g.pivot, cosA, sinA);
+    for (std::size_t f = 0; f < g.faces.size(); ++f, ++faceIndex) {
+      const PlacedFace& pf = d.placedFaces[faceIndex];
       if (g.faces[f].type != GuideFace::Type::Line) {
-        count = plateContactsLoop(m, d, static_cast<int>(gi), static_cast<int>(f), pf, margin, reachLink, forces,
-                                  count, power);
+        const PlateFaceRef face{static_cast<int>(gi), static_cast<int>(f), pf, faceIndex, part};
+        count = plateContactsLoop(m, d, face, margin, reachLink, forces, count, power);
         continue;
       }
-      for (int i = 0; i < m.chain.links && (count < cap || !list); ++i) {
+      forEachOwnLink(m, part, [&](int i) {
+        if (count >= cap && list) return;
         const LinkKin lk = d.links[i];
-        if (norm2(lk.c - bc) > reach2 || !faceNear(pf, lk.c, reachLink)) continue;
+        if (norm2(lk.c - bc) > reach2 || !faceNear(pf, lk.c, reachLink)) return;
         const FaceHit hit = plateEdgeHit(m, pf, lk, facingSide(pf, lk.c, lk.e));
-        if (!hit.valid || hit.gap >= margin) continue;
+        if (!hit.valid || hit.gap >= margin) return;
         ContactPoint unlisted;
         ContactPoint& c = list ? d.contacts[count++] : unlisted;
         setPlateContact(m, static_cast<int>(gi), static_cast<int>(f), i, lk.c, lk.v, lk.w, hit, rate, c);
-        if (forces) power += addCompliantForce(m, m.plateGuide, c, d);
-      }
+        if (!forces) return;
+        if (part) sharePlateForce(m, c, d, *part, faceIndex);
+        else power += addCompliantForce(m, m.plateGuide, c, d);
+      });
     }
-    firstFace += g.faces.size();
   }
   return count;
 }
 
 }  // namespace
 
-double detectContacts(const Model& m, Data& d, double margin, bool forces) {
+double placeGuides(const Model& m, Data& d, double margin) {
   // a link is near a guide when its centre lies within the guide's bounding circle grown by twice
   // the reach of a plate edge from its link's centre
   const double reachLink = norm(Vec2{0.5 * m.chain.pitch, m.chain.plateHalfHeight}) + std::fabs(margin);
+  std::size_t faceIndex = 0;
   for (std::size_t gi = 0; gi < m.guides.size(); ++gi) {
     const GuideModel& g = m.guides[gi];
     const double cosA = g.rotor >= 0 ? d.rotorCos[g.rotor] : 1.0;
@@ -210,7 +226,13 @@ double detectContacts(const Model& m, Data& d, double margin, bool forces) {
     d.guideBoundX[gi] = bc.x;
     d.guideBoundY[gi] = bc.y;
     d.guideReach2[gi] = reach * reach;
+    for (const GuideFace& face : g.faces) d.placedFaces[faceIndex++] = placeFace(face, g.pivot, cosA, sinA);
   }
+  return reachLink;
+}
+
+double detectContacts(const Model& m, Data& d, double margin, bool forces) {
+  const double reachLink = placeGuides(m, d, margin);
   updateSearchWindows(m, d, margin);
   d.deepestGap = 0.0;
   // the rollers sprocket by sprocket, then the plates guide by guide, several at a time
@@ -218,9 +240,52 @@ double detectContacts(const Model& m, Data& d, double margin, bool forces) {
   double power = 0.0;
   for (std::size_t s = 0; s < m.sprockets.size(); ++s)
     count = rollerContactsLoop(m, d, static_cast<int>(s), margin, forces, count, power);
-  count = detectPlateContacts(m, d, margin, reachLink, forces, count, power);
+  count = detectPlateContacts(m, d, margin, reachLink, forces, count, power, nullptr);
   // a CVT's rocker pins between its pulleys' sheaves
   d.nContacts = m.pulleys.empty() ? count : pinSheaveContacts(m, d, margin, forces, count, power);
+  return power;
+}
+
+void shareContacts(const Model& m, Data& d, double reachLink, ThreadPart& part) {
+  part.deepestGap = 0.0;
+  part.rollerQueries = part.rollerQueriesSkipped = 0;
+  std::fill(part.plateCount.begin(), part.plateCount.end(), 0);
+  for (std::size_t s = 0; s < m.sprockets.size(); ++s) rollerContactsShare(m, d, static_cast<int>(s), part);
+  double unused = 0.0;
+  detectPlateContacts(m, d, 0.0, reachLink, true, 0, unused, &part);
+}
+
+double sumSharedContacts(const Model& m, Data& d) {
+  double power = 0.0;
+  for (std::size_t s = 0; s < m.sprockets.size(); ++s) rollerContactsSum(m, d, static_cast<int>(s), power);
+  // the plates' shares face by face in link order (each part's are: merged)
+  std::vector<ThreadPart>& parts = d.threads.parts;
+  int faceIndex = 0;
+  for (const GuideModel& g : m.guides)
+    for (std::size_t f = 0; f < g.faces.size(); ++f, ++faceIndex) {
+      const std::size_t base = static_cast<std::size_t>(faceIndex * m.chain.links);
+      int next[ThreadedWork::kMaxThreads] = {};
+      for (;;) {
+        const PlateShare* first = nullptr;
+        int from = -1;
+        for (std::size_t t = 0; t < parts.size(); ++t) {
+          if (next[t] == parts[t].plateCount[faceIndex]) continue;
+          const PlateShare& share = parts[t].plates[base + static_cast<std::size_t>(next[t])];
+          if (!first || share.link < first->link) first = &share, from = static_cast<int>(t);
+        }
+        if (!first) break;
+        ++next[from];
+        if (g.rotor >= 0) d.gen[m.rotorGen(g.rotor)] -= first->moment;
+        power += first->power;
+      }
+    }
+  d.deepestGap = 0.0;
+  for (const ThreadPart& part : parts) {
+    d.deepestGap = std::min(d.deepestGap, part.deepestGap);
+    d.rollerQueries += part.rollerQueries;
+    d.rollerQueriesSkipped += part.rollerQueriesSkipped;
+  }
+  d.nContacts = 0;
   return power;
 }
 

@@ -17,6 +17,8 @@ LinkKin linkKinematics(const Model& m, const double* y, int link);
 
 /// Fills d.links, d.rotorAngle/Rate/Cos/Sin from the state and the inputs (driven rotor rate).
 void evaluateKinematics(const Model& m, Data& d, const double* y);
+/// Its rotors' part (angles, their sines and cosines, rates).
+void rotorKinematics(const Model& m, Data& d, const double* y);
 
 /// Roller of link `link` at end (0 rear, 1 front) against a sprocket turned to `angle` (with
 /// cos/sin given) at angular velocity `rate`. True (and cp filled) when the gap is below margin.
@@ -146,6 +148,18 @@ bool deepPenetration(const ContactPoint* contacts, int n, double limit, double t
 /// d.deepestGap: the deepest gap found (0 without a penetration); with forces and
 /// !d.listContacts, that and the forces only (nothing listed, d.nContacts 0).
 double detectContacts(const Model& m, Data& d, double margin, bool forces = false);
+
+/// detectContacts' first stage: the guides' bounding circles of the search (grown by the reach of
+/// `margin`) and their faces placed at their angles, into d; returns a plate edge's reach.
+double placeGuides(const Model& m, Data& d, double margin);
+
+/// detectContacts with the forces and no list, on several threads (dynamics/threaded.h), after
+/// placeGuides and the search windows: each thread's share over its links (the forces on them,
+/// the rest into its part) ...
+void shareContacts(const Model& m, Data& d, double reachLink, ThreadPart& part);
+/// ... then, on one thread, the rotors' shares and the power summed in detectContacts' order, the
+/// parts' deepest gap and counts combined; returns the power.
+double sumSharedContacts(const Model& m, Data& d);
 
 /// Column of W for direction `dir` (normal or tangent) of contact c: the link entries
 /// (d/dq of the relative velocity along dir for x, y, gamma) and the rotor entry.

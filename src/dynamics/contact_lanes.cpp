@@ -35,23 +35,23 @@ CHAINDRIVE_ALWAYS_INLINE auto lanesBelow(int i, int n) {
   return past == 0.0;
 }
 
-// Calls f(i) for the first index i of every block in a window, in increasing order.
+// Calls f(i) for the first index i of every block in a window (and in `mine`, where not null: a
+// thread's blocks), in increasing order.
 template <class F>
-CHAINDRIVE_ALWAYS_INLINE void forEachBlock(const std::uint64_t* window, int words, F f) {
+CHAINDRIVE_ALWAYS_INLINE void forEachBlock(const std::uint64_t* window, const std::uint64_t* mine, int words, F f) {
   for (int w = 0; w < words; ++w)
-    for (std::uint64_t bits = window[w]; bits != 0; bits &= bits - 1)
+    for (std::uint64_t bits = window[w] & (mine ? mine[w] : ~std::uint64_t{0}); bits != 0; bits &= bits - 1)
       f((64 * w + __builtin_ctzll(bits)) * SearchWindows::kBlock);
 }
 
-// The largest distances by which a link's centre and its axis moved since the last scan (NaN if
-// any is NaN), in one pass.
+// The largest squared distances by which the centre and the axis of a link in range r moved since
+// the last scan, and whether one was NaN, into `moves` (with what it holds), in one pass.
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE void largestMoves(const LinkArrays& L, const SearchWindows& sw, int n, double& centers,
-                                           double& axes) {
+CHAINDRIVE_ALWAYS_INLINE void largestMoves(const LinkArrays& L, const SearchWindows& sw, LinkRange r, LinkMoves& moves) {
   using V = typename simd::Lanes<W>::V;
   using simd::load;
   V center2 = {}, axis2 = {}, notANumber = {};
-  for (int i = 0; i < n; i += W) {  // (the padding: zeros in both)
+  for (int i = r.first; i < r.last; i += W) {  // (the padding: zeros in both)
     const V cx = load<V>(&L.cx[i]) - load<V>(&sw.centerX[i]), cy = load<V>(&L.cy[i]) - load<V>(&sw.centerY[i]);
     const V ax = load<V>(&L.ex[i]) - load<V>(&sw.axisX[i]), ay = load<V>(&L.ey[i]) - load<V>(&sw.axisY[i]);
     const V c2 = cx * cx + cy * cy, a2 = ax * ax + ay * ay;
@@ -59,13 +59,11 @@ CHAINDRIVE_ALWAYS_INLINE void largestMoves(const LinkArrays& L, const SearchWind
     axis2 = simd::select(a2 > axis2, a2, axis2);
     notANumber = simd::select(c2 + a2 != c2 + a2, c2 + a2, notANumber);
   }
-  double c = 0.0, a = 0.0;
   for (int l = 0; l < W; ++l) {
-    c = std::max(c, center2[l]) + notANumber[l] * 0.0;  // (NaN carried)
-    a = std::max(a, axis2[l]) + notANumber[l] * 0.0;
+    moves.center2 = std::max(moves.center2, center2[l]);
+    moves.axis2 = std::max(moves.axis2, axis2[l]);
+    moves.nan |= notANumber[l] != 0.0;
   }
-  centers = std::sqrt(c);
-  axes = std::sqrt(a);
 }
 
 // Scans every block against every element: the windows of the elements, the positions now.
@@ -105,24 +103,30 @@ CHAINDRIVE_ALWAYS_INLINE void scanWindows(const Model& m, Data& d, double margin
   sw.valid = true;
 }
 
+}  // namespace
+
 // Keeps the windows while nothing moved further than the band since the last scan, else scans.
 // A pin half a pitch from its link's centre moves by at most the centre's move and half a pitch
 // times its axis' move.
+
+bool windowsKept(const Model& m, const Data& d, double margin, const LinkMoves& moves) {
+  const SearchWindows& sw = d.windows;
+  const double allowed = SearchWindows::kBand - 1e-9;  // (a nanometre for the rounding of the moves)
+  if (!sw.valid || sw.margin != margin || moves.nan) return false;
+  const double centers = std::sqrt(moves.center2), axes = std::sqrt(moves.axis2);
+  bool keep = centers + 0.5 * m.chain.pitch * axes <= allowed;
+  for (std::size_t g = 0; g < m.guides.size() && keep; ++g)
+    keep = centers + norm(Vec2{d.guideBoundX[g] - sw.boundX[g], d.guideBoundY[g] - sw.boundY[g]}) <= allowed;
+  return keep;
+}
+
+namespace {
+
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE void windowLanes(const Model& m, Data& d, double margin) {
-  SearchWindows& sw = d.windows;
-  const LinkArrays& L = d.links;
-  const int n = m.chain.links;
-  const double allowed = SearchWindows::kBand - 1e-9;  // (a nanometre for the rounding of the moves)
-  bool keep = sw.valid && sw.margin == margin;
-  if (keep) {
-    double centers, axes;
-    largestMoves<W>(L, sw, n, centers, axes);
-    keep = centers + 0.5 * m.chain.pitch * axes <= allowed;
-    for (std::size_t g = 0; g < m.guides.size() && keep; ++g)
-      keep = centers + norm(Vec2{d.guideBoundX[g] - sw.boundX[g], d.guideBoundY[g] - sw.boundY[g]}) <= allowed;
-  }
-  if (!keep) scanWindows<W>(m, d, margin);
+  LinkMoves moves;
+  if (d.windows.valid && d.windows.margin == margin) largestMoves<W>(d.links, d.windows, {0, m.chain.links}, moves);
+  if (!windowsKept(m, d, margin, moves)) scanWindows<W>(m, d, margin);
 }
 
 // What a sprocket's pass sums lane by lane: the rollers near it and those the clearance bound
@@ -173,9 +177,9 @@ CHAINDRIVE_ALWAYS_INLINE void closestPoints(const ToothGap& gap, Mask query, V l
 
 // The contacts' forces by the compliant law (zero in the lanes not touching): their generalized
 // forces on the even links (a link's two rollers summed), their torque on the sprocket and their
-// power into the sums.
-template <int W, class V, class Mask>
-CHAINDRIVE_ALWAYS_INLINE void rollerForces(const Model& m, Data& d, int j, Mask touching, V gap,
+// power into the sums (Split: stored per pin at hint h, for rollerSumLanes).
+template <int W, bool Split, class V, class Mask>
+CHAINDRIVE_ALWAYS_INLINE void rollerForces(const Model& m, Data& d, int j, int h, Mask touching, V gap,
                                            const roller::World<V>& w, V& normal, V& friction, Sums<W>& sums) {
   const V zero{};  // (selected, not multiplied: the lanes not queried hold anything, NaN too)
   V power;
@@ -183,9 +187,15 @@ CHAINDRIVE_ALWAYS_INLINE void rollerForces(const Model& m, Data& d, int j, Mask 
              power);
   const V fx = simd::select(touching, normal * w.normalX + friction * w.tangentX, zero);
   const V fy = simd::select(touching, normal * w.normalY + friction * w.tangentY, zero);
-  const int part = (j / W) % (4 / W);
-  sums.torque[part] += simd::select(touching, w.rRotorX * fy - w.rRotorY * fx, zero);
-  sums.power[part] += simd::select(touching, power, zero);
+  const V torque = simd::select(touching, w.rRotorX * fy - w.rRotorY * fx, zero);
+  if constexpr (Split) {
+    simd::store(&d.threads.pinTorque[h], torque);
+    simd::store(&d.threads.pinPower[h], simd::select(touching, power, zero));
+  } else {
+    const int part = (j / W) % (4 / W);
+    sums.torque[part] += torque;
+    sums.power[part] += simd::select(touching, power, zero);
+  }
   sums.deepest = simd::select(touching & (gap < sums.deepest), gap, sums.deepest);
   double per[3][W];
   for (auto [array, v] : {std::pair{per[0], pairSums(fx)}, {per[1], pairSums(fy)},
@@ -218,13 +228,20 @@ CHAINDRIVE_ALWAYS_INLINE int listRollerContacts(Data& d, int s, int rotor, int j
   return count;
 }
 
-// Sprocket s against the W rollers (pins) from pin j.
-template <int W>
+// Sprocket s against the W rollers (pins) from pin j. (Split: their torque and power stored, zero
+// unless touching.)
+template <int W, bool Split>
 CHAINDRIVE_ALWAYS_INLINE int rollerVector(const Model& m, Data& d, int s, int j, double margin, bool forces, int count,
                                           Sums<W>& sums) {
   using V = typename simd::Lanes<W>::V;
   using Mask = typename simd::Lanes<W>::Mask;
   using simd::load;
+  RollerHints& hints = d.rollerHints;
+  const int h = hints.index(s, j);
+  if constexpr (Split) {
+    simd::store(&d.threads.pinTorque[h], V{});
+    simd::store(&d.threads.pinPower[h], V{});
+  }
   const SprocketModel& sp = m.sprockets[s];
   const LinkArrays& L = d.links;
   const V rollerX = pinLanes<W>(load<V>(&L.rearX[j]), load<V>(&L.frontX[j]));
@@ -237,8 +254,6 @@ CHAINDRIVE_ALWAYS_INLINE int rollerVector(const Model& m, Data& d, int s, int j,
   const double cosA = d.rotorCos[r], sinA = d.rotorSin[r];
   V bodyX, bodyY;
   roller::toSprocketFrame(ax, ay, cosA, sinA, bodyX, bodyY);
-  RollerHints& hints = d.rollerHints;
-  const int h = hints.index(s, j);
   const V free = (load<V>(&hints.clearance[h]) - margin) - roller::kClearanceReserve;
   const V movedX = bodyX - load<V>(&hints.bodyX[h]), movedY = bodyY - load<V>(&hints.bodyY[h]);
   const Mask clear = (free > 0.0) & (movedX * movedX + movedY * movedY < free * free);
@@ -266,35 +281,54 @@ CHAINDRIVE_ALWAYS_INLINE int rollerVector(const Model& m, Data& d, int s, int j,
       pinLanes<W>(load<V>(&L.vRearY[j]), load<V>(&L.vFrontY[j])), pinLanes<W>(load<V>(&L.cx[j]), load<V>(&L.cx[j])),
       pinLanes<W>(load<V>(&L.cy[j]), load<V>(&L.cy[j])));
   V normal{}, friction{};
-  if (forces) rollerForces<W>(m, d, j, touching, gap, w, normal, friction, sums);
+  if (forces) rollerForces<W, Split>(m, d, j, h, touching, gap, w, normal, friction, sums);
   if (!d.listsContacts(forces)) return count;
   return listRollerContacts<W>(d, s, r, j, touching, gap, w, normal, friction, count);
 }
 
-template <int W>
+// Sprocket s against the rollers of its window (a thread's share of it: Split, with the forces,
+// for the evaluation on several threads; its counts and deepest gap into the thread's part).
+template <int W, bool Split>
 CHAINDRIVE_ALWAYS_INLINE int rollerLanes(const Model& m, Data& d, int s, double margin, bool forces, int count,
-                                         double& power) {
+                                         double& power, ThreadPart* part) {
   Sums<W> sums;
-  forEachBlock(d.windows.sprocketWindow(s), d.windows.words, [&](int first) __attribute__((always_inline)) {
+  forEachBlock(d.windows.sprocketWindow(s), Split ? part->blocks.data() : nullptr, d.windows.words,
+               [&](int first) __attribute__((always_inline)) {
     for (int j = first; j < first + SearchWindows::kBlock && j < m.chain.links; j += W)
-      count = rollerVector<W>(m, d, s, j, margin, forces, count, sums);
+      count = rollerVector<W, Split>(m, d, s, j, margin, forces, count, sums);
   });
-  double torque[4], dissipated[4];
+  long long& queries = Split ? part->rollerQueries : d.rollerQueries;
+  long long& skipped = Split ? part->rollerQueriesSkipped : d.rollerQueriesSkipped;
+  double& deepest = Split ? part->deepestGap : d.deepestGap;
   for (int l = 0; l < W; ++l) {
-    d.rollerQueries += sums.near[l];
-    d.rollerQueriesSkipped += sums.skipped[l];
+    queries += sums.near[l];
+    skipped += sums.skipped[l];
   }
-  for (int h = 0; h < 4 / W; ++h)
-    for (int l = 0; l < W; ++l) {
-      torque[h * W + l] = sums.torque[h][l];
-      dissipated[h * W + l] = sums.power[h][l];
-    }
-  if (forces) {
-    d.gen[m.rotorGen(m.sprockets[s].rotor)] -= simd::reduce4(torque);
-    power += simd::reduce4(dissipated);
-    for (int l = 0; l < W; ++l) d.deepestGap = std::min(d.deepestGap, sums.deepest[l]);
+  if (!forces) return count;
+  if (!Split) {
+    d.gen[m.rotorGen(m.sprockets[s].rotor)] -= simd::reducePartials<W>(sums.torque);
+    power += simd::reducePartials<W>(sums.power);
   }
+  for (int l = 0; l < W; ++l) deepest = std::min(deepest, sums.deepest[l]);
   return count;
+}
+
+// The torques and powers the threads stored per roller, summed over the window as rollerLanes sums
+// them (the lanes not touching add zeros, which leave a sum as it is: it starts at +0 and so is
+// never -0).
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void rollerSumLanes(const Model& m, Data& d, int s, double& power) {
+  using V = typename simd::Lanes<W>::V;
+  V torque[4 / W] = {}, dissipated[4 / W] = {};
+  forEachBlock(d.windows.sprocketWindow(s), nullptr, d.windows.words, [&](int first) __attribute__((always_inline)) {
+    for (int j = first; j < first + SearchWindows::kBlock && j < m.chain.links; j += W) {
+      const int h = d.rollerHints.index(s, j);
+      torque[(j / W) % (4 / W)] += simd::load<V>(&d.threads.pinTorque[h]);
+      dissipated[(j / W) % (4 / W)] += simd::load<V>(&d.threads.pinPower[h]);
+    }
+  });
+  d.gen[m.rotorGen(m.sprockets[s].rotor)] -= simd::reducePartials<W>(torque);
+  power += simd::reducePartials<W>(dissipated);
 }
 
 // An arc face's pass over the links, worked out once per face and evaluation: face `face` of guide
@@ -304,6 +338,8 @@ struct FacePass {
   const PlacedFace& pf;
   double margin, reach, rate;
   bool forces, list;
+  ThreadPart* part;  // (a thread's share: its blocks, its contacts' shares; null: all, serial)
+  int faceIndex;     // in d.placedFaces
 };
 
 // The arc face against the W links from link i (those within the guide's bounding circle grown by
@@ -356,18 +392,21 @@ CHAINDRIVE_ALWAYS_INLINE int plateVector(const Model& m, Data& d, const FacePass
     const int link = i + l;
     setPlateContact(m, f.guide, f.face, link, Vec2{L.cx[link], L.cy[link]}, Vec2{L.vx[link], L.vy[link]}, L.w[link],
                     hit, f.rate, c);
-    if (f.forces) power += addCompliantForce(m, m.plateGuide, c, d);
+    if (!f.forces) continue;
+    if (f.part) sharePlateForce(m, c, d, *f.part, f.faceIndex);
+    else power += addCompliantForce(m, m.plateGuide, c, d);
   }
   return count;
 }
 
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE int plateLanes(const Model& m, Data& d, int guide, int face, const PlacedFace& pf,
-                                        double margin, double reach, bool forces, int count, double& power) {
-  const int rotor = m.guides[guide].rotor;
-  const FacePass f{guide, face, pf, margin, reach, rotor >= 0 ? d.rotorRate[rotor] : 0.0, forces,
-                   d.listsContacts(forces)};
-  forEachBlock(d.windows.guideWindow(static_cast<int>(m.sprockets.size()), guide), d.windows.words,
+CHAINDRIVE_ALWAYS_INLINE int plateLanes(const Model& m, Data& d, const PlateFaceRef& face, double margin, double reach,
+                                        bool forces, int count, double& power) {
+  const int guide = face.guide, rotor = m.guides[guide].rotor;
+  const FacePass f{guide,  face.face,  face.pf, margin, reach, rotor >= 0 ? d.rotorRate[rotor] : 0.0, forces,
+                   d.listsContacts(forces), face.part, face.index};
+  forEachBlock(d.windows.guideWindow(static_cast<int>(m.sprockets.size()), guide),
+               face.part ? face.part->blocks.data() : nullptr, d.windows.words,
                [&](int first) __attribute__((always_inline)) {
     for (int i = first; i < first + SearchWindows::kBlock && i < m.chain.links; i += W)
       count = plateVector<W>(m, d, f, i, count, power);
@@ -377,23 +416,41 @@ CHAINDRIVE_ALWAYS_INLINE int plateLanes(const Model& m, Data& d, int guide, int 
 
 CHAINDRIVE_TARGET_AVX2 int rollersAvx2(const Model& m, Data& d, int s, double margin, bool forces, int count,
                                        double& power) {
-  return rollerLanes<4>(m, d, s, margin, forces, count, power);
+  return rollerLanes<4, false>(m, d, s, margin, forces, count, power, nullptr);
 }
 int rollersSse2(const Model& m, Data& d, int s, double margin, bool forces, int count, double& power) {
-  return rollerLanes<2>(m, d, s, margin, forces, count, power);
+  return rollerLanes<2, false>(m, d, s, margin, forces, count, power, nullptr);
 }
+CHAINDRIVE_TARGET_AVX2 void rollerShareAvx2(const Model& m, Data& d, int s, ThreadPart& part) {
+  double unused = 0.0;
+  rollerLanes<4, true>(m, d, s, 0.0, true, 0, unused, &part);
+}
+void rollerShareSse2(const Model& m, Data& d, int s, ThreadPart& part) {
+  double unused = 0.0;
+  rollerLanes<2, true>(m, d, s, 0.0, true, 0, unused, &part);
+}
+CHAINDRIVE_TARGET_AVX2 void rollerSumAvx2(const Model& m, Data& d, int s, double& power) {
+  rollerSumLanes<4>(m, d, s, power);
+}
+void rollerSumSse2(const Model& m, Data& d, int s, double& power) { rollerSumLanes<2>(m, d, s, power); }
 
-CHAINDRIVE_TARGET_AVX2 int platesAvx2(const Model& m, Data& d, int guide, int face, const PlacedFace& pf,
-                                      double margin, double reach, bool forces, int count, double& power) {
-  return plateLanes<4>(m, d, guide, face, pf, margin, reach, forces, count, power);
+CHAINDRIVE_TARGET_AVX2 int platesAvx2(const Model& m, Data& d, const PlateFaceRef& face, double margin, double reach,
+                                      bool forces, int count, double& power) {
+  return plateLanes<4>(m, d, face, margin, reach, forces, count, power);
 }
-int platesSse2(const Model& m, Data& d, int guide, int face, const PlacedFace& pf, double margin, double reach,
-               bool forces, int count, double& power) {
-  return plateLanes<2>(m, d, guide, face, pf, margin, reach, forces, count, power);
+int platesSse2(const Model& m, Data& d, const PlateFaceRef& face, double margin, double reach, bool forces, int count,
+               double& power) {
+  return plateLanes<2>(m, d, face, margin, reach, forces, count, power);
 }
 
 CHAINDRIVE_TARGET_AVX2 void windowsAvx2(const Model& m, Data& d, double margin) { windowLanes<4>(m, d, margin); }
 void windowsSse2(const Model& m, Data& d, double margin) { windowLanes<2>(m, d, margin); }
+CHAINDRIVE_TARGET_AVX2 void scanAvx2(const Model& m, Data& d, double margin) { scanWindows<4>(m, d, margin); }
+void scanSse2(const Model& m, Data& d, double margin) { scanWindows<2>(m, d, margin); }
+CHAINDRIVE_TARGET_AVX2 void movesAvx2(const Data& d, LinkRange r, LinkMoves& moves) {
+  largestMoves<4>(d.links, d.windows, r, moves);
+}
+void movesSse2(const Data& d, LinkRange r, LinkMoves& moves) { largestMoves<2>(d.links, d.windows, r, moves); }
 
 }  // namespace
 
@@ -407,10 +464,30 @@ int rollerContactsLoop(const Model& m, Data& d, int sprocket, double margin, boo
                             : rollersSse2(m, d, sprocket, margin, forces, count, power);
 }
 
-int plateContactsLoop(const Model& m, Data& d, int guide, int face, const PlacedFace& pf, double margin, double reach,
-                      bool forces, int count, double& power) {
-  return d.vectorLanes == 4 ? platesAvx2(m, d, guide, face, pf, margin, reach, forces, count, power)
-                            : platesSse2(m, d, guide, face, pf, margin, reach, forces, count, power);
+int plateContactsLoop(const Model& m, Data& d, const PlateFaceRef& face, double margin, double reach, bool forces,
+                      int count, double& power) {
+  return d.vectorLanes == 4 ? platesAvx2(m, d, face, margin, reach, forces, count, power)
+                            : platesSse2(m, d, face, margin, reach, forces, count, power);
+}
+
+void linkMovesRange(const Data& d, LinkRange r, LinkMoves& moves) {
+  if (d.vectorLanes == 4) movesAvx2(d, r, moves);
+  else movesSse2(d, r, moves);
+}
+
+void scanSearchWindows(const Model& m, Data& d, double margin) {
+  if (d.vectorLanes == 4) scanAvx2(m, d, margin);
+  else scanSse2(m, d, margin);
+}
+
+void rollerContactsShare(const Model& m, Data& d, int sprocket, ThreadPart& part) {
+  if (d.vectorLanes == 4) rollerShareAvx2(m, d, sprocket, part);
+  else rollerShareSse2(m, d, sprocket, part);
+}
+
+void rollerContactsSum(const Model& m, Data& d, int sprocket, double& power) {
+  if (d.vectorLanes == 4) rollerSumAvx2(m, d, sprocket, power);
+  else rollerSumSse2(m, d, sprocket, power);
 }
 
 }  // namespace chaindrive

@@ -8,6 +8,7 @@
 #include "assembly/model.h"
 #include "dynamics/hydraulic_tensioner.h"
 #include "math/vec2.h"
+#include "threads.h"
 
 namespace chaindrive {
 
@@ -181,8 +182,56 @@ struct ContactPoint {
 /// The force of a contact on the chain (a pin-sheave contact's radial friction included).
 inline Vec2 contactForce(const ContactPoint& c) { return (c.fN + c.fNFriction) * c.normal + c.fT * c.tangent; }
 
+/// A range of links [first, last).
+struct LinkRange {
+  int first = 0, last = 0;
+};
+
+/// The largest squared distances by which a link's centre and its axis moved since the search
+/// windows' last scan, and whether one was NaN.
+struct LinkMoves {
+  double center2 = 0.0, axis2 = 0.0;
+  bool nan = false;
+};
+
+/// A plate-guide contact's share of its guide's rotor: what addContactGen subtracts from the
+/// rotor's generalized force, and the contact's dissipated power (added in the serial order).
+struct PlateShare {
+  int link = 0;
+  double moment = 0.0, power = 0.0;
+};
+
+/// One thread's share of an evaluation on several threads (solver.threads; dynamics/threaded.h):
+/// its links, in units of kUnit links dealt round the threads (each thread has some of every part
+/// of the chain, so of every sprocket's and guide's contacts), and what it found for the calling
+/// thread to combine. Aligned to a cache line: threads write their own only.
+struct alignas(64) ThreadPart {
+  static constexpr int kUnit = 16;  // links (four blocks of the search's windows)
+  std::vector<LinkRange> ranges;    // its units, in increasing order
+  std::vector<std::uint64_t> blocks;  // (window words) bit b: block b of the search's windows is its
+  LinkMoves moves;                            // of its links
+  double jointOpening2 = 0.0;                 // the largest squared joint opening (NaN: some was)
+  double deepestGap = 0.0;
+  long long rollerQueries = 0, rollerQueriesSkipped = 0;
+  std::vector<PlateShare> plates;  // (guide faces x links) by face: its plate contacts, in link order
+  std::vector<int> plateCount;     // (guide faces)
+};
+
+/// The work of an evaluation on several threads: the pool, each thread's part, and the per-joint
+/// and per-roller values the threads store and the calling thread sums in the serial order (so
+/// that every number of threads gives the bits of one).
+struct ThreadedWork {
+  static constexpr int kMaxThreads = 16;
+  StagePool* pool = nullptr;        // (null: one thread, the serial code)
+  std::vector<ThreadPart> parts;    // (threads)
+  std::vector<double> jointPower;   // (links + padding)
+  std::vector<double> pinTorque, pinPower;  // (sprockets x pins, as RollerHints) this evaluation's
+};
+
 struct Data {
   explicit Data(const Model& m);
+  /// Evaluations from now on on the pool's threads (null or one thread: the serial code).
+  void useThreads(const Model& m, StagePool* pool);
 
   // what generalizedForces evaluates: the rigid-contact methods switch off the compliant contacts
   // (and, for ideal joints, the journal bearings) and treat them as constraints instead
@@ -235,6 +284,7 @@ struct Data {
   // power terms
   double powerInput = 0.0, powerDissipated = 0.0;
   long long rhsEvaluations = 0;
+  ThreadedWork threads;
 };
 
 }  // namespace chaindrive

@@ -104,6 +104,29 @@ Data::Data(const Model& m)
   dampingWork.assign(5 * static_cast<std::size_t>(m.chain.links + 1 + LinkArrays::kPadding), 0.0);
 }
 
+void Data::useThreads(const Model& m, StagePool* pool) {
+  threads = ThreadedWork{};
+  if (!pool || pool->size() == 1) return;
+  const int n = m.chain.links, count = pool->size();
+  threads.pool = pool;
+  threads.parts.resize(static_cast<std::size_t>(count));
+  for (ThreadPart& part : threads.parts) {
+    part.blocks.assign(static_cast<std::size_t>(windows.words), 0);
+    part.plates.resize(placedFaces.size() * static_cast<std::size_t>(n));
+    part.plateCount.assign(placedFaces.size(), 0);
+  }
+  for (int unit = 0; unit * ThreadPart::kUnit < n; ++unit) {
+    ThreadPart& part = threads.parts[static_cast<std::size_t>(unit % count)];
+    const LinkRange r{unit * ThreadPart::kUnit, std::min(n, (unit + 1) * ThreadPart::kUnit)};
+    part.ranges.push_back(r);
+    for (int b = r.first / SearchWindows::kBlock; b * SearchWindows::kBlock < r.last; ++b)
+      part.blocks[static_cast<std::size_t>(b / 64)] |= std::uint64_t{1} << (b % 64);
+  }
+  threads.jointPower.assign(static_cast<std::size_t>(n + LinkArrays::kPadding), 0.0);
+  threads.pinTorque.assign(rollerHints.gap.size(), 0.0);
+  threads.pinPower.assign(rollerHints.gap.size(), 0.0);
+}
+
 // Stages 1-5 of dynamics.h, the generalized forces summed into d.gen and the powers kept.
 void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t, const double* y) {
   ++d.rhsEvaluations;
@@ -120,28 +143,40 @@ void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t,
   } else {
     d.nContacts = 0;
   }
-  // the chain's torques on the rotors before the bodies' own forces join them (the joints touch
-  // the links' entries only)
-  std::copy(rotorGen, d.gen.end(), d.rotorChainTorque.begin());
+  addLinkWeight(m, d, {0, m.chain.links});
+  rotorStage(m, d, y, pIn, pDiss);
+}
+
+void rotorStage(const Model& m, Data& d, const double* y, double powerInput, double powerDissipated) {
+  // the chain's torques on the rotors before the bodies' own forces join them (the joints and the
+  // links' weight touch the links' entries only)
+  std::copy(d.gen.begin() + m.rotorGen(0), d.gen.end(), d.rotorChainTorque.begin());
   if (m.stateChamberOil >= 0) {
     const int r = m.tensioner.rotor;
     fillChamber(m.tensioner, m.rotors[r].axis, d.rotorCos[r], d.rotorSin[r], y[m.stateChamberOil], d.chamber);
   }
-  evaluateBodyForces(m, d, pIn, pDiss);
-  d.powerInput = pIn;
-  d.powerDissipated = pDiss;
+  evaluateRotorBodyForces(m, d, powerInput, powerDissipated);
+  d.powerInput = powerInput;
+  d.powerDissipated = powerDissipated;
 }
 
 void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, const double* y, double* ydot) {
   generalizedForces(m, d, in, t, y);
-  // links: positions move with their velocities, velocities with force over mass (diagonal)
-  const int n = m.chain.links;
+  linkDerivatives(m, d, y, ydot, {0, m.chain.links});
+  otherDerivatives(m, d, y, ydot);
+}
+
+void linkDerivatives(const Model& m, const Data& d, const double* y, double* ydot, LinkRange r) {
+  // positions move with their velocities, velocities with force over mass (diagonal)
+  const int n = m.chain.links, count = r.last - r.first;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
-  std::copy(y + 3 * n, y + 6 * n, ydot);
+  for (int k = 0; k < 3; ++k) std::copy(y + (3 + k) * n + r.first, y + (3 + k) * n + r.last, ydot + k * n + r.first);
   const double* g = d.gen.data();
   double* a = ydot + 3 * n;
-  scaleInto(a, g, invM, 2 * n);
-  scaleInto(a + 2 * n, g + 2 * n, invJ, n);
+  for (int k = 0; k < 3; ++k) scaleInto(a + k * n + r.first, g + k * n + r.first, k < 2 ? invM : invJ, count);
+}
+
+void otherDerivatives(const Model& m, const Data& d, const double* y, double* ydot) {
   // rotors: the driven one follows the crankshaft input, the free ones their torque over inertia
   for (std::size_t r = 0; r < m.rotors.size(); ++r) {
     const RotorModel& ro = m.rotors[r];

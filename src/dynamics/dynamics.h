@@ -28,10 +28,18 @@ namespace chaindrive {
 /// ydot = f(t, y) with compliant contacts. Leaves forces, contacts and outputs of this
 /// evaluation in d. Never allocates.
 void forwardCompliant(const Model& m, Data& d, const InputSignal& in, double t, const double* y, double* ydot);
+/// Its last stage, after generalizedForces: the links' derivatives (those of range r) and the
+/// others' (rotors, energy accumulators, chamber, impulses).
+void linkDerivatives(const Model& m, const Data& d, const double* y, double* ydot, LinkRange r);
+void otherDerivatives(const Model& m, const Data& d, const double* y, double* ydot);
 
 /// Generalized forces only (no derivative), used by the static preload and the Jacobian.
 /// Evaluates kinematics, joints, contacts and body forces at (t, y) into d.gen.
 void generalizedForces(const Model& m, Data& d, const InputSignal& in, double t, const double* y);
+/// Its last stage, after the joints', the contacts' and the links' weight: the chain's torques on
+/// the rotors kept (rotorChainTorque), a hydraulic chamber filled, the rotors' and the tensioner's
+/// own forces, the powers (given: the chain's) into d.
+void rotorStage(const Model& m, Data& d, const double* y, double powerInput, double powerDissipated);
 
 struct EnergyTerms {
   double kinetic = 0.0, elastic = 0.0, gravity = 0.0, dissipated = 0.0, inputWork = 0.0;

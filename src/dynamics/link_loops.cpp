@@ -23,13 +23,13 @@ namespace {
 #define CHAINDRIVE_LANES_BODY [&](int i, auto lanes) __attribute__((always_inline))
 
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE void kinematicsLanes(const Model& m, Data& d, const double* y) {
+CHAINDRIVE_ALWAYS_INLINE void kinematicsLanes(const Model& m, Data& d, const double* y, LinkRange r) {
   using V = typename simd::Lanes<W>::V;
   const int n = m.chain.links;
   LinkArrays& L = d.links;
   const double halfPitch = 0.5 * m.chain.pitch;
   const double *x = y, *yy = y + n, *gamma = y + 2 * n, *vx = y + 3 * n, *vy = y + 4 * n, *w = y + 5 * n;
-  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+  simd::forEachVectorIn<V>(r.first, r.last, CHAINDRIVE_LANES_BODY {
     V sine, cosine;
     sinCosLanes<W>(lanes.load(gamma + i), sine, cosine);
     const V cx = lanes.load(x + i), cy = lanes.load(yy + i);
@@ -53,6 +53,7 @@ CHAINDRIVE_ALWAYS_INLINE void kinematicsLanes(const Model& m, Data& d, const dou
     lanes.store(&L.vFrontY[i], vcy + vhy);
   });
   // the last joint joins the last link's front pin to the first link's rear pin
+  if (r.first != 0) return;
   L.rearX[n] = L.rearX[0];
   L.rearY[n] = L.rearY[0];
   L.vRearX[n] = L.vRearX[0];
@@ -61,19 +62,34 @@ CHAINDRIVE_ALWAYS_INLINE void kinematicsLanes(const Model& m, Data& d, const dou
   L.ey[n] = L.ey[0];
 }
 
+// What the joints' pass over the links carries from vector to vector: their power in four
+// partial sums (link i in sum i mod 4), the largest squared opening and whether one was NaN.
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
+struct JointScan {
+  typename simd::Lanes<W>::V partial[4 / W] = {}, widest = {};
+  typename simd::Lanes<W>::Mask notANumber = {};
+  double largest() const {  // (NaN where one was)
+    double largest = 0.0;
+    bool nan = false;
+    for (int l = 0; l < W; ++l) {
+      largest = widest[l] > largest ? widest[l] : largest;
+      nan |= notANumber[l] != 0;
+    }
+    return nan ? std::nan("") : largest;
+  }
+};
+
+// The joints' forces of range r (joint i: link i's front pin against link i + 1's rear pin), their
+// power into the scan's sums, or stored per joint into powerOut where not null.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void jointForceLanes(const Model& m, Data& d, LinkRange r, JointScan<W>& scan,
+                                              double* powerOut) {
   using V = typename simd::Lanes<W>::V;
-  using Mask = typename simd::Lanes<W>::Mask;
   using simd::load;
   const int n = m.chain.links;
   const LinkArrays& L = d.links;
   double *fx = d.joints.forceX(), *fy = d.joints.forceY();
-  // joint i: link i's front pin against link i + 1's rear pin
-  V partial[4 / W] = {};  // the power in four partial sums: link i in sum i mod 4
-  V widest = {};
-  Mask notANumber = {};
-  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+  simd::forEachVectorIn<V>(r.first, r.last, CHAINDRIVE_LANES_BODY {
     const V dx = load<V>(&L.frontX[i]) - load<V>(&L.rearX[i + 1]);
     const V dy = load<V>(&L.frontY[i]) - load<V>(&L.rearY[i + 1]);
     const V dvx = load<V>(&L.vFrontX[i]) - load<V>(&L.vRearX[i + 1]);
@@ -82,17 +98,28 @@ CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
     journalBearing(m.chain, dx, dy, dvx, dvy, jfx, jfy, power);
     lanes.store(fx + i, jfx);
     lanes.store(fy + i, jfy);
-    partial[(i / W) % (4 / W)] += power;
+    if (powerOut) lanes.store(powerOut + i, power);
+    else scan.partial[(i / W) % (4 / W)] += power;
     const V opening2 = dx * dx + dy * dy;
-    widest = simd::select(opening2 > widest, opening2, widest);
-    notANumber |= opening2 != opening2;
+    scan.widest = simd::select(opening2 > scan.widest, opening2, scan.widest);
+    scan.notANumber |= opening2 != opening2;
   });
+  if (r.last != n) return;
   fx[-1] = fx[n - 1];  // link 0's rear joint is the last one
   fy[-1] = fy[n - 1];
-  // each link: its front joint's force on its front pin, its rear joint's opposite force on its
-  // rear pin, and their torques about its centre
+}
+
+// Each link of range r: its front joint's force on its front pin, its rear joint's opposite force
+// on its rear pin, and their torques about its centre.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void jointGenLanes(const Model& m, Data& d, LinkRange r) {
+  using V = typename simd::Lanes<W>::V;
+  using simd::load;
+  const int n = m.chain.links;
+  const LinkArrays& L = d.links;
+  const double *fx = d.joints.forceX(), *fy = d.joints.forceY();
   double *gx = d.gen.data(), *gy = gx + n, *gGamma = gx + 2 * n;
-  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+  simd::forEachVectorIn<V>(r.first, r.last, CHAINDRIVE_LANES_BODY {
     const V fFrontX = load<V>(fx + i), fFrontY = load<V>(fy + i);
     const V fRearX = load<V>(fx + i - 1), fRearY = load<V>(fy + i - 1);
     const V cx = load<V>(&L.cx[i]), cy = load<V>(&L.cy[i]);
@@ -102,16 +129,25 @@ CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
     lanes.store(gy + i, fFrontY - fRearY);
     lanes.store(gGamma + i, (ux * fFrontY - uy * fFrontX) - (rx * fRearY - ry * fRearX));
   });
-  double sums[4], largest = 0.0;
-  bool nan = false;
-  for (int h = 0; h < 4 / W; ++h)
-    for (int l = 0; l < W; ++l) sums[h * W + l] = partial[h][l];
-  for (int l = 0; l < W; ++l) {
-    largest = widest[l] > largest ? widest[l] : largest;
-    nan |= notANumber[l] != 0;
-  }
-  d.jointOpening2 = nan ? std::nan("") : largest;
-  return simd::reduce4(sums);
+}
+
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE double jointLanes(const Model& m, Data& d) {
+  const LinkRange all{0, m.chain.links};
+  JointScan<W> scan;
+  jointForceLanes<W>(m, d, all, scan, nullptr);
+  jointGenLanes<W>(m, d, all);
+  d.jointOpening2 = scan.largest();
+  return simd::reducePartials<W>(scan.partial);
+}
+
+// The power stored per joint summed as jointForceLanes sums it.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE double jointPowerLanes(const Model& m, const double* power) {
+  using V = typename simd::Lanes<W>::V;
+  V partial[4 / W] = {};
+  for (int i = 0; i < m.chain.links; i += W) partial[(i / W) % (4 / W)] += simd::load<V>(power + i);
+  return simd::reducePartials<W>(partial);
 }
 
 // Per joint its tension along the links' mean axis and its deformation (into tension and
@@ -143,53 +179,90 @@ CHAINDRIVE_ALWAYS_INLINE double jointMeasureLanes(const Model& m, const Data& d,
     lanes.store(tension + i, select(axisNorm > 0.0, forceX * (inverse * ax) + forceY * (inverse * ay),
                                     forceX * ex + forceY * ey));
   });
-  double sums[4];
-  for (int h = 0; h < 4 / W; ++h)
-    for (int l = 0; l < W; ++l) sums[h * W + l] = partial[h][l];
-  return simd::reduce4(sums);
+  return simd::reducePartials<W>(partial);
 }
 
 // jointDampingOffDiagonalLoop: the pins' velocities under the field w = accel (levers of half a
 // pitch along the link axes), each joint's force -c (front pin - rear pin of the next link), then
 // per link the forces and torques of its two joints over the masses, F / M = -C w, and
-// w += a (F / M + D w).
+// w += a (F / M + D w). In three passes over a range of links, each reading the last one's
+// results of its neighbours (on several threads, a barrier between them): w copied, with the
+// first link behind the last (the work area: w, then the forces with the last joint's in front);
+struct DampingWork {
+  double *wx, *wy, *ww, *fx, *fy;
+  DampingWork(const Model& m, Data& d) {
+    const int stride = m.chain.links + 1 + LinkArrays::kPadding;
+    wx = d.dampingWork.data(), wy = wx + stride, ww = wy + stride, fx = ww + stride + 1, fy = fx + stride;
+  }
+};
+
+}  // namespace
+
+void dampingCopyRange(const Model& m, Data& d, const double* accel, LinkRange r) {
+  const int n = m.chain.links;
+  const DampingWork dw(m, d);
+  for (int k = 0; k < 3; ++k) {
+    double* to = (k == 0 ? dw.wx : k == 1 ? dw.wy : dw.ww);
+    std::copy(accel + k * n + r.first, accel + k * n + r.last, to + r.first);
+    if (r.first == 0) to[n] = to[0];
+  }
+}
+
+namespace {
+
+// the joints' forces;
 template <int W>
-CHAINDRIVE_ALWAYS_INLINE void jointDampingLanes(const Model& m, Data& d, double a, double* accel) {
+CHAINDRIVE_ALWAYS_INLINE void dampingForceLanes(const Model& m, Data& d, LinkRange r) {
   using V = typename simd::Lanes<W>::V;
   using simd::load;
-  const int n = m.chain.links, stride = n + 1 + LinkArrays::kPadding;
+  const int n = m.chain.links;
+  const LinkArrays& L = d.links;
+  const double c = m.chain.jointDamping, hp = 0.5 * m.chain.pitch;
+  const DampingWork dw(m, d);
+  simd::forEachVectorIn<V>(r.first, r.last, CHAINDRIVE_LANES_BODY {
+    const V frontX = hp * load<V>(&L.ex[i]), frontY = hp * load<V>(&L.ey[i]);  // levers: front, then rear
+    const V rearX = -hp * load<V>(&L.ex[i + 1]), rearY = -hp * load<V>(&L.ey[i + 1]);
+    const V omega = load<V>(dw.ww + i), next = load<V>(dw.ww + i + 1);
+    const V dvx = (load<V>(dw.wx + i) - omega * frontY) - (load<V>(dw.wx + i + 1) - next * rearY);
+    const V dvy = (load<V>(dw.wy + i) + omega * frontX) - (load<V>(dw.wy + i + 1) + next * rearX);
+    lanes.store(dw.fx + i, -c * dvx);
+    lanes.store(dw.fy + i, -c * dvy);
+  });
+  if (r.last != n) return;
+  dw.fx[-1] = dw.fx[n - 1];
+  dw.fy[-1] = dw.fy[n - 1];
+}
+
+// the links' accelerations swept.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void dampingSweepLanes(const Model& m, Data& d, double a, double* accel, LinkRange r) {
+  using V = typename simd::Lanes<W>::V;
+  using simd::load;
+  const int n = m.chain.links;
   const LinkArrays& L = d.links;
   const double c = m.chain.jointDamping, hp = 0.5 * m.chain.pitch;
   const double invM = 1.0 / m.chain.mass, invJ = 1.0 / m.chain.inertia;
   const double diagonalX = 2.0 * c * invM, diagonalGamma = 2.0 * c * hp * hp * invJ;  // (linkDampedKicks')
-  // w copied with the first link behind the last, and the forces with the last joint's in front
-  double *wx = d.dampingWork.data(), *wy = wx + stride, *ww = wy + stride, *fx = ww + stride + 1, *fy = fx + stride;
-  for (int k = 0; k < 3; ++k) {
-    double* to = wx + k * stride;
-    std::copy(accel + k * n, accel + (k + 1) * n, to);
-    to[n] = to[0];
-  }
-  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
-    const V frontX = hp * load<V>(&L.ex[i]), frontY = hp * load<V>(&L.ey[i]);  // levers: front, then rear
-    const V rearX = -hp * load<V>(&L.ex[i + 1]), rearY = -hp * load<V>(&L.ey[i + 1]);
-    const V omega = load<V>(ww + i), next = load<V>(ww + i + 1);
-    const V dvx = (load<V>(wx + i) - omega * frontY) - (load<V>(wx + i + 1) - next * rearY);
-    const V dvy = (load<V>(wy + i) + omega * frontX) - (load<V>(wy + i + 1) + next * rearX);
-    lanes.store(fx + i, -c * dvx);
-    lanes.store(fy + i, -c * dvy);
-  });
-  fx[-1] = fx[n - 1];
-  fy[-1] = fy[n - 1];
+  const DampingWork dw(m, d);
   double *ax = accel, *ay = accel + n, *alpha = accel + 2 * n;
-  simd::forEachVector<V>(n, CHAINDRIVE_LANES_BODY {
+  simd::forEachVectorIn<V>(r.first, r.last, CHAINDRIVE_LANES_BODY {
     const V frontX = hp * load<V>(&L.ex[i]), frontY = hp * load<V>(&L.ey[i]);
-    const V fFrontX = load<V>(fx + i), fFrontY = load<V>(fy + i), fRearX = load<V>(fx + i - 1), fRearY = load<V>(fy + i - 1);
+    const V fFrontX = load<V>(dw.fx + i), fFrontY = load<V>(dw.fy + i);
+    const V fRearX = load<V>(dw.fx + i - 1), fRearY = load<V>(dw.fy + i - 1);
     const V torque = (frontX * fFrontY - frontY * fFrontX) + (frontX * fRearY - frontY * fRearX);
     const V x = lanes.load(ax + i), y = lanes.load(ay + i), g = lanes.load(alpha + i);
     lanes.store(ax + i, x + a * ((fFrontX - fRearX) * invM + diagonalX * x));
     lanes.store(ay + i, y + a * ((fFrontY - fRearY) * invM + diagonalX * y));
     lanes.store(alpha + i, g + a * (torque * invJ + diagonalGamma * g));
   });
+}
+
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void jointDampingLanes(const Model& m, Data& d, double a, double* accel) {
+  const LinkRange all{0, m.chain.links};
+  dampingCopyRange(m, d, accel, all);
+  dampingForceLanes<W>(m, d, all);
+  dampingSweepLanes<W>(m, d, a, accel, all);
 }
 
 template <int W>
@@ -202,10 +275,10 @@ CHAINDRIVE_ALWAYS_INLINE void dampedKickLanes(double a, double base, const doubl
   });
 }
 
-CHAINDRIVE_TARGET_AVX2 void kinematicsAvx2(const Model& m, Data& d, const double* y) {
-  kinematicsLanes<4>(m, d, y);
+CHAINDRIVE_TARGET_AVX2 void kinematicsAvx2(const Model& m, Data& d, const double* y, LinkRange r) {
+  kinematicsLanes<4>(m, d, y, r);
 }
-void kinematicsSse2(const Model& m, Data& d, const double* y) { kinematicsLanes<2>(m, d, y); }
+void kinematicsSse2(const Model& m, Data& d, const double* y, LinkRange r) { kinematicsLanes<2>(m, d, y, r); }
 
 CHAINDRIVE_TARGET_AVX2 void dampedKickAvx2(double a, double base, const double* extra, int n, double* kick) {
   dampedKickLanes<4>(a, base, extra, n, kick);
@@ -216,6 +289,32 @@ void dampedKickSse2(double a, double base, const double* extra, int n, double* k
 
 CHAINDRIVE_TARGET_AVX2 double jointsAvx2(const Model& m, Data& d) { return jointLanes<4>(m, d); }
 double jointsSse2(const Model& m, Data& d) { return jointLanes<2>(m, d); }
+
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE double jointForcesStoring(const Model& m, Data& d, LinkRange r) {
+  JointScan<W> scan;
+  jointForceLanes<W>(m, d, r, scan, d.threads.jointPower.data());
+  return scan.largest();
+}
+CHAINDRIVE_TARGET_AVX2 double jointForcesAvx2(const Model& m, Data& d, LinkRange r) {
+  return jointForcesStoring<4>(m, d, r);
+}
+double jointForcesSse2(const Model& m, Data& d, LinkRange r) { return jointForcesStoring<2>(m, d, r); }
+CHAINDRIVE_TARGET_AVX2 void jointGenAvx2(const Model& m, Data& d, LinkRange r) { jointGenLanes<4>(m, d, r); }
+void jointGenSse2(const Model& m, Data& d, LinkRange r) { jointGenLanes<2>(m, d, r); }
+CHAINDRIVE_TARGET_AVX2 double jointPowerAvx2(const Model& m, const double* power) {
+  return jointPowerLanes<4>(m, power);
+}
+double jointPowerSse2(const Model& m, const double* power) { return jointPowerLanes<2>(m, power); }
+
+CHAINDRIVE_TARGET_AVX2 void dampingForceAvx2(const Model& m, Data& d, LinkRange r) { dampingForceLanes<4>(m, d, r); }
+void dampingForceSse2(const Model& m, Data& d, LinkRange r) { dampingForceLanes<2>(m, d, r); }
+CHAINDRIVE_TARGET_AVX2 void dampingSweepAvx2(const Model& m, Data& d, double a, double* accel, LinkRange r) {
+  dampingSweepLanes<4>(m, d, a, accel, r);
+}
+void dampingSweepSse2(const Model& m, Data& d, double a, double* accel, LinkRange r) {
+  dampingSweepLanes<2>(m, d, a, accel, r);
+}
 
 CHAINDRIVE_TARGET_AVX2 void dampingAvx2(const Model& m, Data& d, double a, double* accel) {
   jointDampingLanes<4>(m, d, a, accel);
@@ -234,9 +333,35 @@ double measuresSse2(const Model& m, const Data& d, double* tension, double* defo
 
 int supportedVectorLanes() { return simd::hasAvx2() ? 4 : 2; }
 
-void linkKinematicsLoop(const Model& m, Data& d, const double* y) {
-  if (d.vectorLanes == 4) kinematicsAvx2(m, d, y);
-  else kinematicsSse2(m, d, y);
+void linkKinematicsLoop(const Model& m, Data& d, const double* y) { linkKinematicsRange(m, d, y, {0, m.chain.links}); }
+
+void linkKinematicsRange(const Model& m, Data& d, const double* y, LinkRange r) {
+  if (d.vectorLanes == 4) kinematicsAvx2(m, d, y, r);
+  else kinematicsSse2(m, d, y, r);
+}
+
+double jointForcesRange(const Model& m, Data& d, LinkRange r) {
+  return d.vectorLanes == 4 ? jointForcesAvx2(m, d, r) : jointForcesSse2(m, d, r);
+}
+
+void jointGenRange(const Model& m, Data& d, LinkRange r) {
+  if (d.vectorLanes == 4) jointGenAvx2(m, d, r);
+  else jointGenSse2(m, d, r);
+}
+
+double jointPowerSum(const Model& m, const Data& d) {
+  const double* power = d.threads.jointPower.data();
+  return d.vectorLanes == 4 ? jointPowerAvx2(m, power) : jointPowerSse2(m, power);
+}
+
+void dampingForceRange(const Model& m, Data& d, LinkRange r) {
+  if (d.vectorLanes == 4) dampingForceAvx2(m, d, r);
+  else dampingForceSse2(m, d, r);
+}
+
+void dampingSweepRange(const Model& m, Data& d, double a, double* accel, LinkRange r) {
+  if (d.vectorLanes == 4) dampingSweepAvx2(m, d, a, accel, r);
+  else dampingSweepSse2(m, d, a, accel, r);
 }
 
 double jointForcesLoop(const Model& m, Data& d) {

@@ -26,6 +26,26 @@ int supportedVectorLanes();
 /// first link's rear pin and axis copied behind the last one (the joints' loops read them there).
 void linkKinematicsLoop(const Model& m, Data& d, const double* y);
 
+// The passes of the per-link loops over a range of links [r.first, r.last), r.first a multiple
+// of 4, for an evaluation on several threads (dynamics/threaded.h): each thread its links, a
+// barrier between passes that read their neighbours' results. The whole loops above are these
+// over all links, so every split gives the same bits.
+
+/// The links' kinematics (link 0's range also copies its rear pin behind the last link).
+void linkKinematicsRange(const Model& m, Data& d, const double* y, LinkRange r);
+/// The joints' forces (the last joint's range also copies its force in front of the first), their
+/// power stored per joint into d.threads.jointPower; returns the largest squared opening (NaN:
+/// one was NaN).
+double jointForcesRange(const Model& m, Data& d, LinkRange r);
+/// The links' generalized forces of their two joints (after every range's jointForcesRange).
+void jointGenRange(const Model& m, Data& d, LinkRange r);
+/// d.threads.jointPower summed as jointForcesLoop sums the power.
+double jointPowerSum(const Model& m, const Data& d);
+/// jointDampingOffDiagonalLoop's three passes.
+void dampingCopyRange(const Model& m, Data& d, const double* accel, LinkRange r);
+void dampingForceRange(const Model& m, Data& d, LinkRange r);
+void dampingSweepRange(const Model& m, Data& d, double a, double* accel, LinkRange r);
+
 /// The joint forces (d.joints) and from them the links' generalized forces, written (not added)
 /// into the link part of d.gen; the largest squared pin separation into d.jointOpening2. Returns
 /// the joints' dissipated power (summed in four partial sums: link i in sum i mod 4).

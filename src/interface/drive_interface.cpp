@@ -138,6 +138,11 @@ constexpr DriveVariable kDriveParameters[] = {
   {"solver.newmarkGamma", 109, R, Par, Binding::NewmarkGamma, When::Always, "", "0.5", "0.5|1",
    "fixed-newmark: Newmark's gamma (beta = (gamma + 1/2)^2 / 4); 0.5 keeps the amplitude of every mode, more damps "
    "the modes the step cannot resolve"},
+  {"solver.threads", 115, I, Par, Binding::SolverThreads, When::Always, "", "1", "1|16",
+   "threads of each evaluation of the link model (the same results for every number): the links' stages split "
+   "among them, a barrier between stages; for fixed-verlet and fixed-verlet-implicit-joint-damping with compliant "
+   "contacts only (refused otherwise); they spin between steps. Pays only where each thread has a core of its own "
+   "and the cores exchange data fast (docs/benchmark_threads.md)"},
   {"tensioner.oilTemperature", 114, R, Par, Binding::OilTemperature, When::Hydraulic, "|K|degC", "363.15", "",
    "temperature of the hydraulic tensioner's oil: its viscosity (the drive description's viscosity law, within its "
    "range), so its leak-down"},

@@ -29,7 +29,7 @@ enum class Binding {
   // parameters
   DriveFile, LinkIndex, SolverMethod, SolverTolerance, SolverStep, SolverPreload, TensionerPreload,
   TensionerStiffness, TensionerDamping, TensionerDampingExtension, ContactMethod, JointModel, Fidelity,
-  NewmarkGamma, OilTemperature,
+  NewmarkGamma, OilTemperature, SolverThreads,
 };
 
 struct InterfaceVariable {

@@ -11,6 +11,7 @@
 #include "dynamics/iteration_matrix.h"
 #include "dynamics/joint_forces.h"
 #include "dynamics/link_loops.h"
+#include "dynamics/threaded.h"
 #include "run/span_damping.h"
 #include "span/calibration_cache.h"
 #include "span/span_outputs.h"
@@ -42,7 +43,8 @@ DriveSystem::DriveSystem(std::shared_ptr<const Model> m, const InputSignal& in, 
 
 int DriveSystem::rhs(double t, const double* y, double* ydot) noexcept {
   try {
-    forwardCompliant(*model_, data_, in_, t, y, ydot);
+    if (evaluatesOnThreads(*model_, data_)) forwardCompliantOnThreads(*model_, data_, in_, t, y, ydot);
+    else forwardCompliant(*model_, data_, in_, t, y, ydot);
     if (!derivativesOnly_ && !allFinite(ydot, model_->nStates)) {  // (else healthy() checks the state)
       lastError_ = {FailureKind::NonFinite, "non-finite derivative"};
       return 1;  // recoverable: the integrator retries with a smaller step
@@ -96,7 +98,9 @@ void DriveSystem::dampedKicks(double a, bool constantPart, double* kick) noexcep
 bool DriveSystem::dampOffDiagonal(double a, double* ydot) noexcept {
   const Model& m = *model_;
   if (m.chain.jointClearance > 0.0 || !data_.jointForces) return false;  // (the joints' damping not constant)
-  jointDampingOffDiagonalLoop(m, data_, a, ydot + m.linkState(0, Model::kVx));  // (the links' accelerations)
+  double* accel = ydot + m.linkState(0, Model::kVx);  // (the links' accelerations)
+  if (evaluatesOnThreads(m, data_)) jointDampingOnThreads(m, data_, a, accel);
+  else jointDampingOffDiagonalLoop(m, data_, a, accel);
   return true;
 }
 
@@ -231,6 +235,9 @@ Simulation::Simulation(std::shared_ptr<const Model> model, const SimulationOptio
   for (const auto& p : combinationProblems(*model_, choices))
     refused += (refused.empty() ? "" : "; ") + std::string(kChoiceWords[static_cast<int>(p.choice)]) + " " + p.text;
   if (!refused.empty()) throw std::invalid_argument(refused);
+  if (options_.threads != 1 && (options_.fidelity != Fidelity::Link || contactMethod_ != ContactMethod::Compliant))
+    throw std::invalid_argument("solver.threads = " + std::to_string(options_.threads) +
+                                ": several threads run the link model with compliant contacts only; allowed: 1");
   if (options_.fidelity == Fidelity::Link) buildLinkModel(choices.joints);
   else buildSpanModel();
   const double step = integrator_->fixedStep();
@@ -242,6 +249,7 @@ void Simulation::buildLinkModel(JointModel joints) {
   if (contactMethod_ == ContactMethod::Compliant) {
     system_ = std::make_unique<DriveSystem>(model_, *inputs_, options_.health);
     integrator_ = makeIntegrator(*system_, options_.integrator);
+    startThreads();
   } else {
     rigid_ = std::make_shared<RigidContactDrive>(model_, *inputs_, joints == JointModel::Ideal, options_.health,
                                                  options_.integrator.rigid.rigidPins);
@@ -251,6 +259,23 @@ void Simulation::buildLinkModel(JointModel joints) {
     outData_ = std::make_unique<Data>(*model_);
   }
   y_.assign(model_->nStates, 0.0);
+}
+
+// The pool of the options' threads, its stages the system's evaluations (a run they cannot split
+// refused by name, not run on one thread unannounced).
+void Simulation::startThreads() {
+  const int n = options_.threads;
+  if (n == 1) return;
+  const std::string setting = "solver.threads = " + std::to_string(n);
+  if (n < 1 || n > ThreadedWork::kMaxThreads)
+    throw std::invalid_argument(setting + ": allowed 1 to " + std::to_string(ThreadedWork::kMaxThreads));
+  if (!splitsEvaluations(*model_, system_->data()))
+    throw std::invalid_argument(setting + ": several threads run the link model with compliant contacts, journal-bearing "
+                                "joints and a method that reads only derivatives (fixed-verlet, "
+                                "fixed-verlet-implicit-joint-damping), not " + std::string(integratorName()) +
+                                (model_->pulleys.empty() ? "" : " on a drive with pulleys") + "; allowed: 1");
+  pool_ = std::make_unique<StagePool>(n);
+  system_->data().useThreads(*model_, pool_.get());
 }
 
 // The span model: no contacts (the chain is spans), its stiffness from the journal bearings, its

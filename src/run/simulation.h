@@ -39,6 +39,8 @@ struct SimulationOptions {
                                     // probe's own runs, run/step_probe.h, whose advice would probe)
   std::shared_ptr<const span::SpanModel> spanModel;  // span fidelity: this model (of the same link
                                                      // model) instead of one assembled and calibrated
+  int threads = 1;                  // threads of the link model's evaluations (dynamics/threaded.h):
+                                    // the same bits for every number; more than 1 only where they apply
   std::string spanCalibrationFile;  // span fidelity: a read-only calibration looked in before the
                                     // cache (an FMU's resources/span_calibration.json; taken when its
                                     // key is the drive's: span/calibration_cache.h); "": none
@@ -166,6 +168,8 @@ class Simulation {
   const PreloadReport& preloadReport() const { return preload_; }
   IntegratorStats integratorStats() const { return integrator_->stats(); }
   long long rhsEvaluations() const;
+  /// Barriers the threads crossed (solver.threads > 1; 0 on one thread).
+  long long threadBarriers() const { return pool_ ? pool_->barriers() : 0; }
   const char* integratorName() const { return choiceName(options_.integrator.method); }
   /// The step of a fixed-step method (compliant or time stepping); 0 for adaptive methods.
   double integratorFixedStep() const { return integrator_->fixedStep(); }
@@ -195,6 +199,7 @@ class Simulation {
   std::unique_ptr<Integrator> integrator_;
   std::vector<ContactPoint> rigidContacts_;
   std::unique_ptr<Data> outData_;             // rigid contacts: the outputs' work area
+  std::unique_ptr<StagePool> pool_;           // options' threads > 1
   std::vector<double> y_;
   TimeGrid grid_;
   long long k_ = 0;  // grid index of the state y_
@@ -203,6 +208,7 @@ class Simulation {
 
   void buildLinkModel(JointModel joints);
   void buildSpanModel();
+  void startThreads();
   std::string blowUpAdvice(double step) const;  // stepAdvice for this run's failure at `step`
 };
 

@@ -133,6 +133,38 @@ def test_instances_in_two_threads_reproduce_their_solo_runs_bit_for_bit():
         assert np.array_equal(results[k], solo)
 
 
+def test_solver_threads_give_the_outputs_of_one_thread_and_roll_back():
+    # 30 communication steps of the default method, every output observed, on 1 and 2 threads;
+    # then a state taken and restored on 2 threads replays its steps bit for bit
+    names = ("tensioner.F", "tensionGuide.phi", "chain.Ftight", "camshaftIntake.w", "link.Fn", "contacts")
+    one = solo_run("one", observe=names)
+    two = solo_run("two", observe=names, parameters={"solver.threads": 2})
+    assert np.array_equal(one, two)
+    s = fmu.Slave("rollback", parameters={"solver.threads": 2})
+    s.initialize(inputs=INPUTS)
+    s.step(H, t=0.0)
+    state = s.slave.getFMUState()
+    first = [s.step(H, t=k * H) or s.get(names)["tensioner.F"] for k in range(1, 6)]
+    s.slave.setFMUState(state)
+    again = [s.step(H, t=k * H) or s.get(names)["tensioner.F"] for k in range(1, 6)]
+    assert first == again and first == list(one[1:6, 0])
+    s.slave.freeFMUState(state)
+    s.close()
+
+
+@pytest.mark.parametrize("parameters, text", [
+    ({"solver.threads": 0}, "solver.threads = 0 is outside 1..16"),
+    ({"solver.threads": 2, "fidelity": "span"}, "solver.threads = 2: several threads run the link model"),
+    ({"solver.threads": 2, "solver.method": "fixed-newmark"}, "solver.threads = 2: several threads run the link model"),
+])
+def test_solver_threads_where_they_cannot_run_are_errors(parameters, text):
+    s = fmu.Slave("threads", parameters=parameters)
+    with pytest.raises(FMICallException):
+        s.initialize(inputs=INPUTS)
+    assert any(text in m for m in s.errors()), s.errors()
+    s.slave.freeInstance()
+
+
 ROLLBACK_OUTPUTS = ["tensioner.F", "chain.Fslack", "crankshaft.phi", "crankshaft.tauMean"]
 
 
