@@ -313,22 +313,27 @@ CHAINDRIVE_ALWAYS_INLINE int rollerLanes(const Model& m, Data& d, int s, double 
   return count;
 }
 
+// The torque and power the threads stored for the W rollers (pins) from pin j (hint h) into the
+// sums.
+template <int W>
+CHAINDRIVE_ALWAYS_INLINE void addStoredRollers(const Data& d, int j, int h, Sums<W>& sums) {
+  using V = typename simd::Lanes<W>::V;
+  sums.torque[(j / W) % (4 / W)] += simd::load<V>(&d.threads.pinTorque[h]);
+  sums.power[(j / W) % (4 / W)] += simd::load<V>(&d.threads.pinPower[h]);
+}
+
 // The torques and powers the threads stored per roller, summed over the window as rollerLanes sums
 // them (the lanes not touching add zeros, which leave a sum as it is: it starts at +0 and so is
 // never -0).
 template <int W>
 CHAINDRIVE_ALWAYS_INLINE void rollerSumLanes(const Model& m, Data& d, int s, double& power) {
-  using V = typename simd::Lanes<W>::V;
-  V torque[4 / W] = {}, dissipated[4 / W] = {};
+  Sums<W> sums;
   forEachBlock(d.windows.sprocketWindow(s), nullptr, d.windows.words, [&](int first) __attribute__((always_inline)) {
-    for (int j = first; j < first + SearchWindows::kBlock && j < m.chain.links; j += W) {
-      const int h = d.rollerHints.index(s, j);
-      torque[(j / W) % (4 / W)] += simd::load<V>(&d.threads.pinTorque[h]);
-      dissipated[(j / W) % (4 / W)] += simd::load<V>(&d.threads.pinPower[h]);
-    }
+    for (int j = first; j < first + SearchWindows::kBlock && j < m.chain.links; j += W)
+      addStoredRollers<W>(d, j, d.rollerHints.index(s, j), sums);
   });
-  d.gen[m.rotorGen(m.sprockets[s].rotor)] -= simd::reducePartials<W>(torque);
-  power += simd::reducePartials<W>(dissipated);
+  d.gen[m.rotorGen(m.sprockets[s].rotor)] -= simd::reducePartials<W>(sums.torque);
+  power += simd::reducePartials<W>(sums.power);
 }
 
 // An arc face's pass over the links, worked out once per face and evaluation: face `face` of guide

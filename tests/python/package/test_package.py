@@ -6,6 +6,8 @@ import os
 import pathlib
 import re
 import shutil
+import subprocess
+import sys
 import zipfile
 
 import numpy as np
@@ -196,6 +198,18 @@ def test_an_exported_drive_gives_the_linux64_bits_on_win64_and_from_its_sources(
         shutil.copyfile(built, target)
     rebuilt = compare.run_recorded(config, 0.010, from_sources)[0]
     assert_identical(compare.compare(linux, rebuilt), "the diesel drive's export built from its sources")
+
+
+@pytest.mark.parametrize("fmu_id", FMU_IDS)
+def test_a_process_that_unloaded_the_linux64_binary_exits_cleanly(fmu_id, unpacked):
+    # fmpy unloads the library when the instance is freed; the packaged binary (zig's link, without
+    # the C runtime's start files) once left its exit handlers behind, and the process crashed at
+    # its exit (status -11) after everything had passed (fmu/unload.cpp)
+    script = (f"from harness.fmu import fmu\n"
+              f"s = fmu.Slave('unload', fmu={str(unpacked[fmu_id])!r})\n"
+              f"s.initialize()\ns.step(1e-4)\ns.close()\nprint('closed')\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd=paths.ROOT)
+    assert done.returncode == 0 and done.stdout.strip() == "closed", (done.returncode, done.stderr[-2000:])
 
 
 def test_the_comparison_sees_one_flipped_bit(unpacked):
