@@ -42,7 +42,8 @@ std::string checkDefaultValueReferences() {
       {"solver.preload", kSolverPreload}, {"contact.method", kContactMethod}, {"chain.jointModel", kChainJointModel},
       {"fidelity", kFidelity}, {"solver.newmarkGamma", kSolverNewmarkGamma}, {"tensioner.preload", kTensionerPreload},
       {"tensioner.stiffness", kTensionerStiffness}, {"tensioner.damping", kTensionerDamping},
-      {"tensioner.dampingExtension", kTensionerDampingExtension}, {"tensioner.oilTemperature", kTensionerOilTemperature}};
+      {"tensioner.dampingExtension", kTensionerDampingExtension}, {"tensioner.oilTemperature", kTensionerOilTemperature},
+      {"solver.threads", kSolverThreads}};
   for (const auto& [name, vr] : named) {
     bool found = false;
     for (const Variable& v : defaultVariables()) found = found || (v.vr == vr && std::string(v.name) == name);

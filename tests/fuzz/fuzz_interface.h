@@ -19,7 +19,7 @@ enum Vr : unsigned {
   kDriveFile = 100, kLinkIndex = 101, kSolverMethod = 102, kSolverTolerance = 103, kSolverStep = 104,
   kSolverPreload = 105, kContactMethod = 106, kChainJointModel = 107, kFidelity = 108, kSolverNewmarkGamma = 109,
   kTensionerPreload = 110, kTensionerStiffness = 111, kTensionerDamping = 112, kTensionerDampingExtension = 113,
-  kTensionerOilTemperature = 114,
+  kTensionerOilTemperature = 114, kSolverThreads = 115,
 };
 constexpr const char* kGuid = chaindrive::kDefaultDriveGuid;
 

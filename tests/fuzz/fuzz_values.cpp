@@ -117,6 +117,9 @@ double badReal(Rng& rng, unsigned vr) {
 
 fmi2Integer goodInteger(Rng& rng, unsigned vr) {
   if (vr == kLinkIndex) return rng.chance(0.3) ? -1 : static_cast<fmi2Integer>(rng.below(120));
+  // (one thread: the fuzz runs two processes side by side on two cores under the sanitizers, where
+  // spinning threads would wait on each other; several threads' runs and rollback are tested apart)
+  if (vr == kSolverThreads) return 1;
   return static_cast<fmi2Integer>(rng.below(200)) - 100;
 }
 
@@ -170,7 +173,9 @@ std::vector<Assignment> poisonAssignments(Rng& rng, const FuzzPaths& paths) {
     case 6: return {stringAssignment(kDriveFile, rng.pick({std::string("/nonexistent/drive.json"),
                                                           paths.notADriveFile, std::string("/tmp")}))};
     // rejected after the assembly (cheap) but before the start-state solve
-    case 7: return {integerAssignment(kLinkIndex, rng.pick({-2, 120, INT_MAX}))};
+    case 7:
+      return {rng.chance(0.5) ? integerAssignment(kLinkIndex, rng.pick({-2, 120, INT_MAX}))
+                              : integerAssignment(kSolverThreads, rng.pick({0, 17, INT_MIN}))};
     case 8: return {stringAssignment(kChainJointModel, "ideal"), stringAssignment(kContactMethod, "compliant")};
     case 9:  // an unknown fidelity, or the span fidelity with what it does not take
       switch (rng.below(3)) {
