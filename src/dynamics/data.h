@@ -202,12 +202,11 @@ struct PlateShare {
 };
 
 /// One thread's share of an evaluation on several threads (solver.threads; dynamics/threaded.h):
-/// its links, in units of kUnit links dealt round the threads (each thread has some of every part
-/// of the chain, so of every sprocket's and guide's contacts), and what it found for the calling
-/// thread to combine. Aligned to a cache line: threads write their own only.
+/// its links (a contiguous part of the chain, the parts as equal as whole vectors of 4 allow), and
+/// what it found for the calling thread to combine. Aligned to a cache line: threads write their
+/// own only.
 struct alignas(64) ThreadPart {
-  static constexpr int kUnit = 16;  // links (four blocks of the search's windows)
-  std::vector<LinkRange> ranges;    // its units, in increasing order
+  std::vector<LinkRange> ranges;    // its links, in increasing order (one range, or none)
   std::vector<std::uint64_t> blocks;  // (window words) bit b: block b of the search's windows is its
   LinkMoves moves;                            // of its links
   double jointOpening2 = 0.0;                 // the largest squared joint opening (NaN: some was)
@@ -224,6 +223,7 @@ struct ThreadedWork {
   static constexpr int kMaxThreads = 16;
   StagePool* pool = nullptr;        // (null: one thread, the serial code)
   std::vector<ThreadPart> parts;    // (threads)
+  std::vector<int> linkOwner;       // (links) the thread whose part holds the link
   std::vector<double> jointPower;   // (links + padding)
   std::vector<double> pinTorque, pinPower;  // (sprockets x pins, as RollerHints) this evaluation's
 };

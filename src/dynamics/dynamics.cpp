@@ -115,10 +115,14 @@ void Data::useThreads(const Model& m, StagePool* pool) {
     part.plates.resize(placedFaces.size() * static_cast<std::size_t>(n));
     part.plateCount.assign(placedFaces.size(), 0);
   }
-  for (int unit = 0; unit * ThreadPart::kUnit < n; ++unit) {
-    ThreadPart& part = threads.parts[static_cast<std::size_t>(unit % count)];
-    const LinkRange r{unit * ThreadPart::kUnit, std::min(n, (unit + 1) * ThreadPart::kUnit)};
+  // (contiguous parts: fewer cache lines that two threads write than parts dealt round the threads,
+  // which ran slower; each part ends on whole vectors and search blocks)
+  const int share = ((n + count - 1) / count + 3) / 4 * 4;
+  for (int t = 0; t < count && t * share < n; ++t) {
+    ThreadPart& part = threads.parts[static_cast<std::size_t>(t)];
+    const LinkRange r{t * share, std::min(n, (t + 1) * share)};
     part.ranges.push_back(r);
+    threads.linkOwner.resize(static_cast<std::size_t>(r.last), t);
     for (int b = r.first / SearchWindows::kBlock; b * SearchWindows::kBlock < r.last; ++b)
       part.blocks[static_cast<std::size_t>(b / 64)] |= std::uint64_t{1} << (b % 64);
   }

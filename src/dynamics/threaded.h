@@ -1,6 +1,6 @@
 // An evaluation of the link model on several threads (solver.threads): the per-link stages of
-// forwardCompliant and of the joints' damping sweep split by links (Data::useThreads: units of
-// ThreadPart::kUnit links dealt round the threads), a barrier wherever a stage reads its
+// forwardCompliant and of the joints' damping sweep split by links (Data::useThreads: a
+// contiguous part of the chain per thread), a barrier wherever a stage reads its
 // neighbours' results, and every sum across links formed afterwards on the calling thread in the
 // order of the serial code, so that every number of threads gives the bits of one. For the
 // evaluations that list no contacts (the fixed-step methods' derivatives) of a drive without

@@ -45,6 +45,7 @@ class FixedVerlet : public FixedStepScheme {
   std::string name() const override { return nameOf(damping_); }
 
   void reset(double t0, const double* y0) override {
+    shareRuns();
     FixedStepScheme::reset(t0, y0);
     if (damping_ == VerletDamping::Explicit) return;
     sys_.dampedKicks(0.5 * grid_.unit, damping_ == VerletDamping::Joints, kick_.data());
@@ -66,6 +67,7 @@ class FixedVerlet : public FixedStepScheme {
   // rates: constant for the joints' variant, whose accelerations are swept off the diagonal once
   // after every evaluation, the evaluation's own for All)
   void step(double h, double tNext) override {
+    if (pool_) return stepOnThreads(h, tNext);
     double* y = y_.data();
     const double hh = 0.5 * h;
     const double* f = f_.data();
@@ -89,6 +91,54 @@ class FixedVerlet : public FixedStepScheme {
     finishStep(h, tNext);
   }
 
+  // The same step where the system evaluates on several threads: its kicks and drifts on the
+  // threads that own the components (the same operations on each, so the same bits), the others
+  // (no velocity state) on the calling thread.
+  void stepOnThreads(double h, double tNext) {
+    double* y = y_.data();
+    const double hh = 0.5 * h;
+    const double *f = f_.data(), *fNew = fNew_.data(), *factor = kick_.data();
+    auto kickAndDrifts = [&](int t) {
+      for (const Run& r : pairRuns_[static_cast<std::size_t>(t)])
+        if (damping_ == VerletDamping::Explicit) kickAndDrift(y + r.i, y + r.v, f + r.v, hh, h, r.n);
+        else kickAndDriftBy(y + r.i, y + r.v, f + r.v, factor + r.v, h, r.n);
+      if (t == 0) others_.forEachRun([&](int i, int, int n) { addScaled(y + i, f + i, h, n); });
+    };
+    pool_->run(kickAndDrifts);
+    check(tNext, sys_.rhs(tNext, y, fNew_.data()), "right-hand side failed: ");
+    if (damping_ == VerletDamping::Joints) sys_.dampOffDiagonal(hh, fNew_.data());
+    auto kicks = [&](int t) {
+      for (const Run& r : velocityRuns_[static_cast<std::size_t>(t)])
+        if (damping_ == VerletDamping::Explicit) addScaled(y + r.i, fNew + r.i, hh, r.n);
+        else addScaledBy(y + r.i, fNew + r.i, factor + r.i, r.n);
+      if (t == 0) others_.forEach([&](int i, int) { y[i] += hh * (fNew[i] - f[i]); });  // trapezoidal
+    };
+    pool_->run(kicks);
+    finishStep(h, tNext);
+  }
+
+  // Where the system evaluates on several threads (and its velocities are its positions' partners,
+  // All's damping rates aside): each thread's runs of positions (with their velocities) and of
+  // velocities, split where the owner changes.
+  void shareRuns() {
+    StagePool* pool = sys_.stagePool();
+    pool_ = pool && pool->size() > 1 && velocitiesArePartners_ && damping_ != VerletDamping::All ? pool : nullptr;
+    if (!pool_) return;
+    pairRuns_.assign(static_cast<std::size_t>(pool_->size()), {});
+    velocityRuns_.assign(pairRuns_.size(), {});
+    auto split = [&](std::vector<std::vector<Run>>& into, int i, int v, int n) {
+      for (int c = 0; c < n;) {
+        const int owner = sys_.ownerOf(i + c);
+        int e = c + 1;
+        while (e < n && sys_.ownerOf(i + e) == owner) ++e;
+        into[static_cast<std::size_t>(owner)].push_back(Run{i + c, v + c, e - c});
+        c = e;
+      }
+    };
+    positions_.forEachRun([&](int i, int v, int n) { split(pairRuns_, i, v, n); });
+    velocities_.forEachRun([&](int i, int, int n) { split(velocityRuns_, i, i, n); });
+  }
+
   void kick(double* y, const double* a, double hh) const {
     if (damping_ != VerletDamping::Explicit)
       velocities_.forEachRun([&](int i, int, int n) { addScaledBy(y + i, a + i, kick_.data() + i, n); });
@@ -98,6 +148,11 @@ class FixedVerlet : public FixedStepScheme {
 
   VerletDamping damping_;
   std::vector<double> kick_;  // the kicks' factors (All: at the last evaluation's damping rates)
+  struct Run {
+    int i, v, n;  // components i .. i + n - 1, their velocities from v
+  };
+  StagePool* pool_ = nullptr;  // (shareRuns: the system's, where its evaluations run on threads)
+  std::vector<std::vector<Run>> pairRuns_, velocityRuns_;  // (threads)
 };
 
 }  // namespace

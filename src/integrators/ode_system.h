@@ -11,6 +11,7 @@
 
 #include "choice.h"
 #include "failure.h"
+#include "threads.h"
 
 namespace chaindrive {
 
@@ -51,6 +52,11 @@ class OdeSystem {
   /// state it reaches (healthy): the system may skip what only those need, and its check of the
   /// derivatives.
   virtual void setDerivativesOnly(bool /*on*/) {}
+  /// The threads the system's evaluations run on (null: the calling thread alone), and the one
+  /// among them that reads and writes state component i there: a fixed-step scheme runs its loops
+  /// over the components on the same threads, so that a component stays in its thread's cache.
+  virtual StagePool* stagePool() { return nullptr; }
+  virtual int ownerOf(int /*i*/) const { return 0; }
   /// Half bandwidth of the dominant (banded) part of df/dy, for banded approximations; -1 when
   /// df/dy has no such band (the band solver then refuses the system).
   virtual int halfBandwidth() const { return size(); }

@@ -104,6 +104,13 @@ bool DriveSystem::dampOffDiagonal(double a, double* ydot) noexcept {
   return true;
 }
 
+StagePool* DriveSystem::stagePool() { return evaluatesOnThreads(*model_, data_) ? data_.threads.pool : nullptr; }
+
+int DriveSystem::ownerOf(int i) const {
+  const int n = model_->chain.links;
+  return i < 6 * n && !data_.threads.linkOwner.empty() ? data_.threads.linkOwner[static_cast<std::size_t>(i % n)] : 0;
+}
+
 void DriveSystem::toleranceScales(double* scale) const {
   const Model& m = *model_;
   const double linkScale[6] = {1e-3, 1e-3, 1e-1, 1.0, 1.0, 1e2};  // m, m, rad, m/s, m/s, rad/s

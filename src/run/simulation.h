@@ -73,6 +73,8 @@ class DriveSystem : public OdeSystem {
     derivativesOnly_ = on;
     data_.listContacts = !on;
   }
+  StagePool* stagePool() override;
+  int ownerOf(int i) const override;
   bool healthy(double t, const double* y, Failure& why) noexcept override;
   const Failure& lastError() const override { return lastError_; }
   Data& data() { return data_; }
