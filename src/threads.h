@@ -18,6 +18,7 @@ bool threadsAvailable();
 class StagePool {
  public:
   using Task = void (*)(void* context, int thread) noexcept;
+  static constexpr int kMaxThreads = 16;  // (solver.threads' range: 1 to this)
 
   /// A pool of `threads` threads (the caller and threads - 1 more). Throws std::invalid_argument,
   /// naming solver.threads, for threads < 1, and for threads > 1 in a build without threads or

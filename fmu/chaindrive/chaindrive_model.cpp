@@ -116,9 +116,9 @@ void ChainDriveModel::checkRanges(std::vector<std::string>& problems) const {
   if (params_.step != 0.0 && !(params_.step >= 1e-9 && params_.step <= 1e-3))  // 0: the fidelity's own (run/defaults.h)
     problems.push_back(outsideRange("solver.step", params_.step, 1e-9, 1e-3, "s") + " (or 0: the fidelity's own step)");
   checkRange(problems, "solver.newmarkGamma", params_.newmarkGamma, 0.5, 1.0);
-  if (params_.threads < 1 || params_.threads > ThreadedWork::kMaxThreads)
+  if (params_.threads < 1 || params_.threads > StagePool::kMaxThreads)
     problems.push_back("solver.threads = " + std::to_string(params_.threads) + " is outside 1.." +
-                       std::to_string(ThreadedWork::kMaxThreads));
+                       std::to_string(StagePool::kMaxThreads));
   auto checkOverride = [&](double v, const char* name, double hi, const char* unit) {
     if (!std::isfinite(v) || v > hi)
       problems.push_back(outsideRange(name, v, 0.0, hi, unit) + " (or negative: the drive description's)");

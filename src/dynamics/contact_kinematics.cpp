@@ -264,7 +264,7 @@ double sumSharedContacts(const Model& m, Data& d) {
   for (const GuideModel& g : m.guides)
     for (std::size_t f = 0; f < g.faces.size(); ++f, ++faceIndex) {
       const std::size_t base = static_cast<std::size_t>(faceIndex * m.chain.links);
-      int next[ThreadedWork::kMaxThreads] = {};
+      int next[StagePool::kMaxThreads] = {};
       for (;;) {
         const PlateShare* first = nullptr;
         int from = -1;

@@ -220,10 +220,8 @@ struct alignas(64) ThreadPart {
 /// and per-roller values the threads store and the calling thread sums in the serial order (so
 /// that every number of threads gives the bits of one).
 struct ThreadedWork {
-  static constexpr int kMaxThreads = 16;
   StagePool* pool = nullptr;        // (null: one thread, the serial code)
   std::vector<ThreadPart> parts;    // (threads)
-  std::vector<int> linkOwner;       // (links) the thread whose part holds the link
   std::vector<double> jointPower;   // (links + padding)
   std::vector<double> pinTorque, pinPower;  // (sprockets x pins, as RollerHints) this evaluation's
 };

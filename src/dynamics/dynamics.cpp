@@ -122,7 +122,6 @@ void Data::useThreads(const Model& m, StagePool* pool) {
     ThreadPart& part = threads.parts[static_cast<std::size_t>(t)];
     const LinkRange r{t * share, std::min(n, (t + 1) * share)};
     part.ranges.push_back(r);
-    threads.linkOwner.resize(static_cast<std::size_t>(r.last), t);
     for (int b = r.first / SearchWindows::kBlock; b * SearchWindows::kBlock < r.last; ++b)
       part.blocks[static_cast<std::size_t>(b / 64)] |= std::uint64_t{1} << (b % 64);
   }

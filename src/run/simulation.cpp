@@ -108,7 +108,12 @@ StagePool* DriveSystem::stagePool() { return evaluatesOnThreads(*model_, data_) 
 
 int DriveSystem::ownerOf(int i) const {
   const int n = model_->chain.links;
-  return i < 6 * n && !data_.threads.linkOwner.empty() ? data_.threads.linkOwner[static_cast<std::size_t>(i % n)] : 0;
+  if (i >= 6 * n) return 0;  // (the rotors' and the others' components: the calling thread's)
+  const std::vector<ThreadPart>& parts = data_.threads.parts;
+  for (std::size_t t = 0; t < parts.size(); ++t)
+    for (const LinkRange& r : parts[t].ranges)
+      if (i % n >= r.first && i % n < r.last) return static_cast<int>(t);
+  return 0;
 }
 
 void DriveSystem::toleranceScales(double* scale) const {
@@ -274,8 +279,8 @@ void Simulation::startThreads() {
   const int n = options_.threads;
   if (n == 1) return;
   const std::string setting = "solver.threads = " + std::to_string(n);
-  if (n < 1 || n > ThreadedWork::kMaxThreads)
-    throw std::invalid_argument(setting + ": allowed 1 to " + std::to_string(ThreadedWork::kMaxThreads));
+  if (n < 1 || n > StagePool::kMaxThreads)
+    throw std::invalid_argument(setting + ": allowed 1 to " + std::to_string(StagePool::kMaxThreads));
   if (!splitsEvaluations(*model_, system_->data()))
     throw std::invalid_argument(setting + ": several threads run the link model with compliant contacts, journal-bearing "
                                 "joints and a method that reads only derivatives (fixed-verlet, "

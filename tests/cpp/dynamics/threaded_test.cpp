@@ -12,7 +12,6 @@
 #include <thread>
 #include <tuple>
 
-#include "allocation_counter.h"
 #include "dynamics/dynamics.h"
 #include "dynamics/link_loops.h"
 #include "integrators/integrators.h"
@@ -130,33 +129,6 @@ TEST(Threaded, SimulationSameOutputsAndRefusals) {
     EXPECT_EQ(what.rfind("solver.threads = " + std::to_string(threads) + ": ", 0), 0u)
         << threads << " " << method << " " << fidelity << ": " << what;
   }
-}
-
-// On threads as on one, a communication step allocates nothing once the run has made one (the
-// counter counts every thread's).
-TEST(Threaded, CommunicationStepAllocatesNothing) {
-  if (!allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc";
-  auto m = defaultModel();
-  SimulationOptions opt;
-  opt.threads = 2;
-  opt.integrator.method = named<IntegratorMethod>("fixed-verlet-implicit-joint-damping");
-  opt.integrator.fixed.step = 1e-4 / 28;
-  Simulation sim(m, opt, constantLoads(*m, 3000.0));
-  sim.start(0.0);
-  sim.restart(0.0);
-  sim.advanceTo(1e-4);
-  (void)sim.outputs();
-  double t = 1e-4;
-  const long n = countAllocations([&] {
-    for (int k = 0; k < 20; ++k) {
-      sim.restart(0.0);
-      t += 1e-4;
-      sim.advanceTo(t);
-      (void)sim.outputs().tensionerForce;
-    }
-  });
-  EXPECT_EQ(n, 0);
-  EXPECT_GT(sim.threadBarriers(), 20 * 28 * 6 - 1);
 }
 
 // The barrier orders every thread's writes before every thread's reads, run after run, also after

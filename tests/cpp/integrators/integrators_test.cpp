@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "allocation_counter.h"
 #include "test_util.h"
@@ -170,17 +171,20 @@ TEST(Integrators, MethodsAgreeOnAShortRun) {
 
 // The fixed-step scheme is for real-time use: a communication step (restart from the state,
 // integrate, outputs) allocates nothing once the simulation has run one step, in both fidelities
-// and with either fixed-step scheme.
+// and with either fixed-step scheme, on one thread and on two (solver.threads: the counter counts
+// every thread's).
 TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
   if (!chaindrive::test::allocationCountingAvailable()) GTEST_SKIP() << "allocation counting needs glibc";
   auto m = defaultModel();
-  for (const auto& [fidelity, method] :
-       {std::pair<const char*, const char*>{"link", "fixed-verlet"}, {"span", "fixed-verlet"}, {"link", "fixed-newmark"},
-        {"link", "fixed-verlet-implicit-joint-damping"}, {"link", "fixed-verlet-implicit-damping"}}) {
+  for (const auto& [fidelity, method, threads] :
+       {std::tuple<const char*, const char*, int>{"link", "fixed-verlet", 1}, {"span", "fixed-verlet", 1},
+        {"link", "fixed-newmark", 1}, {"link", "fixed-verlet-implicit-joint-damping", 1},
+        {"link", "fixed-verlet-implicit-damping", 1}, {"link", "fixed-verlet-implicit-joint-damping", 2}}) {
     SimulationOptions opt;
     opt.fidelity = named<Fidelity>(fidelity);
     opt.integrator.method = named<IntegratorMethod>(method);
     opt.integrator.fixed.step = 2.5e-6;
+    opt.threads = threads;
     Simulation sim(m, opt, constantLoads(*m, 3000.0));
     sim.start(0.0);
     sim.restart(0.0);
@@ -195,7 +199,10 @@ TEST(Integrators, FixedStepCommunicationStepAllocatesNothing) {
         (void)sim.outputs().tensionerForce;
       }
     });
-    EXPECT_EQ(n, 0) << fidelity << " " << method;
+    EXPECT_EQ(n, 0) << fidelity << " " << method << " on " << threads << " threads";
+    if (threads > 1) {
+      EXPECT_GT(sim.threadBarriers(), 20 * 40 * 6 - 1);  // (they ran: 40 steps a 0.1 ms)
+    }
   }
   // the counter works: a vector allocated in a counted region is counted
   EXPECT_GE(chaindrive::test::countAllocations([] { std::vector<double> v(10); v[0] = 1.0; }), 1);
